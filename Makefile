@@ -1,0 +1,49 @@
+# floatfoam: the one entry point. `make run` (main job) and `make test` (tests) set up the
+# machine themselves (apt + pinned .venv), idempotently.
+SHELL := /bin/bash
+.DEFAULT_GOAL := help
+
+CASE ?= cylinder_heave
+LEVEL ?= coarse
+NP ?= 2
+SET ?=
+PY := .venv/bin/python
+FF := .venv/bin/floatfoam
+SETARGS := $(foreach s,$(SET),--set $(s))
+export WM_PROJECT_DIR := /usr/share/openfoam
+export OMPI_ALLOW_RUN_AS_ROOT := 1
+export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
+export MPLBACKEND := Agg
+
+.PHONY: help setup run test test-fast lint theory gz bench-theory clean
+
+help:  ## list the targets
+	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
+
+setup:  ## install apt packages and the pinned .venv (idempotent)
+	@bash scripts/setup.sh
+
+run: setup  ## main job: the theory of the default case
+	$(FF) theory $(CASE) $(SETARGS)
+
+test: setup  ## all tests: unit tests and the coarse OpenFOAM regression runs
+	$(PY) -m pytest -q
+
+test-fast: setup  ## unit tests only (no solver runs)
+	$(PY) -m pytest -q -m "not openfoam and not slow"
+
+lint: setup  ## ruff and shellcheck
+	.venv/bin/ruff check src tests postprocess scripts meshes
+	shellcheck scripts/*.sh .ci/run
+
+theory: setup  ## theory of CASE (SET="mass.density=600 ..." to override)
+	$(FF) theory $(CASE) $(SETARGS)
+
+gz: setup  ## righting-arm curve of CASE, with a PNG in build/CASE/gz.png
+	$(FF) gz $(CASE) $(SETARGS)
+
+bench-theory: setup  ## time `floatfoam theory` for every case (target < 1 s each)
+	$(PY) scripts/bench_theory.py
+
+clean:  ## remove build/ (rendered runs, meshes, figures)
+	rm -rf build

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Bring a Debian 12 machine up to date for floatfoam: apt packages and a pinned .venv.
+# Idempotent and quick when already done (checks before installing). Run as root.
+set -eu
+cd "$(dirname "$0")/.."
+
+# OpenFOAM v1912 (ESI) from Debian, MPI, the headless GL/X libraries that the gmsh and vtk
+# wheels load, python3-venv for the venv, shellcheck for the lint.
+APT_PACKAGES="openfoam openmpi-bin libglu1-mesa libgl1 libxcursor1 libxft2 libxinerama1
+libgomp1 libegl1 libgl1-mesa-dri python3-venv shellcheck"
+
+missing=""
+for pkg in $APT_PACKAGES; do
+  dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "ok installed" || missing="$missing $pkg"
+done
+if [ -n "$missing" ]; then
+  echo "setup: installing apt packages:$missing"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  # shellcheck disable=SC2086  # word splitting of the package list is intended
+  apt-get install -y -qq --no-install-recommends $missing >/dev/null
+fi
+
+PYTHON=${PYTHON:-python3}
+if [ ! -x .venv/bin/python ]; then
+  echo "setup: creating .venv"
+  "$PYTHON" -m venv .venv || { rm -rf .venv; /usr/bin/python3 -m venv .venv; }
+fi
+stamp=.venv/.floatfoam-deps
+want=$(sha256sum pyproject.toml | cut -d' ' -f1)
+if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
+  echo "setup: installing Python dependencies (pinned in pyproject.toml)"
+  .venv/bin/python -m pip install -q --upgrade pip
+  .venv/bin/python -m pip install -q -e ".[dev]"
+  echo "$want" > "$stamp"
+fi

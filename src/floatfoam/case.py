@@ -1,0 +1,271 @@
+"""Case files: ``cases/<name>/case.toml`` holds every number of a case.
+
+Tables: [case] (title, description), [body] (shape and dimensions), [mass] (mass or density,
+centre of gravity, radii of gyration), [fluid], [release], optional [reference], and the tables
+later stages read ([domain], [mesh], [run], [potential]). Any value can be overridden with
+``--set table.key=value`` (a TOML value; repeatable).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from floatfoam import bodies
+from floatfoam.errors import InputError
+
+ROOT = Path(__file__).resolve().parents[2]
+CASES_DIR = ROOT / "cases"
+
+SHAPES = {
+    "circular_cylinder": ("radius", "length"),
+    "elliptic_cylinder": ("half_beam", "half_height", "length"),
+    "parabolic_cylinder": ("half_beam", "height", "length"),
+    "conic_cylinder": ("n", "m", "height", "length"),
+    "box": ("beam", "height", "length"),
+    "sphere": ("radius",),
+    "ellipsoid": ("semi_axes",),
+    "implicit": ("expression", "bounds"),
+    "stl": ("path",),
+}
+OPTIONAL_BODY = {"box": ("bilge_radius",), "implicit": ("resolution",), "stl": ("scale",),
+                 "conic_cylinder": ()}
+
+# Keys a case file (or --set) may hold, table by table. None: free-form table.
+SCHEMA = {
+    "case": {"title", "description"},
+    "body": {"shape", *{k for keys in SHAPES.values() for k in keys},
+             *{k for keys in OPTIONAL_BODY.values() for k in keys}},
+    "mass": {"mass", "density", "cog", "gyradius"},
+    "fluid": {"rho", "nu", "g", "depth", "rho_air", "nu_air"},
+    "release": {"heave", "heel", "trim"},
+    "reference": None,
+    "domain": None,
+    "mesh": None,
+    "run": None,
+    "potential": None,
+}
+DEFAULTS = {
+    "fluid": {"rho": 1000.0, "nu": 1.0e-6, "g": 9.81, "rho_air": 1.0, "nu_air": 1.48e-5},
+    "release": {"heave": 0.0, "heel": 0.0, "trim": 0.0},
+    "mass": {"cog": [0.0, 0.0, 0.0]},
+}
+
+
+@dataclass
+class Case:
+    """A loaded, validated case. Angles in ``release`` stay in degrees (as in the file)."""
+
+    name: str
+    path: Path
+    raw: dict
+    body: bodies.Body
+    mass: float
+    cog: np.ndarray
+    gyradius: np.ndarray
+    rho: float
+    nu: float
+    g: float
+    depth: float
+    release: dict = field(default_factory=dict)
+
+    @property
+    def reference(self) -> dict:
+        return self.raw.get("reference", {})
+
+    @property
+    def displacement(self) -> float:
+        """Displaced volume at equilibrium, M / ρ (m³)."""
+        return self.mass / self.rho
+
+
+def case_dir(name_or_path: str) -> Path:
+    """A case folder: a path, or a folder name under cases/."""
+    candidate = Path(name_or_path)
+    for folder in (candidate, CASES_DIR / name_or_path):
+        if (folder / "case.toml").is_file():
+            return folder.resolve()
+    if candidate.name == "case.toml" and candidate.is_file():
+        return candidate.parent.resolve()
+    names = sorted(p.parent.name for p in CASES_DIR.glob("*/case.toml")
+                   if not p.parent.name.startswith("_"))
+    raise InputError(f"case {name_or_path!r} not found; valid are a folder with a case.toml "
+                     f"or one of: {', '.join(names)}")
+
+
+def load_case(name_or_path: str, overrides=()) -> Case:
+    """Read ``case.toml``, apply ``overrides`` ("table.key=value") and validate."""
+    folder = case_dir(name_or_path)
+    with open(folder / "case.toml", "rb") as fh:
+        try:
+            raw = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as err:
+            raise InputError(f"{folder / 'case.toml'}: not valid TOML ({err})") from None
+    _check_tables(raw)
+    for item in overrides:
+        apply_override(raw, item)
+    merged = copy.deepcopy(DEFAULTS)
+    for table, values in raw.items():
+        merged.setdefault(table, {}).update(values)
+    return _build(folder, merged)
+
+
+def apply_override(raw: dict, item: str) -> None:
+    """Apply one ``table.key=value`` to the parsed case (value parsed as TOML, else a string)."""
+    key, sep, text = item.partition("=")
+    key = key.strip()
+    table, dot, name = key.partition(".")
+    if not sep or not dot or not name:
+        raise InputError(f"--set {item!r}: valid is table.key=value, e.g. mass.density=500")
+    allowed = SCHEMA.get(table, set())
+    known = table in SCHEMA and (allowed is None and name.split(".")[0] in raw.get(table, {})
+                                 or allowed is not None and name in allowed)
+    if not known:
+        valid = sorted(f"{t}.{k}" for t, keys in SCHEMA.items() if keys for k in keys)
+        raise InputError(f"--set {key}: unknown key; valid keys are {', '.join(valid)} "
+                         "(and keys already in the case's free-form tables)")
+    try:
+        value = tomllib.loads(f"v = {text.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = text.strip()
+    target = raw.setdefault(table, {})
+    *parents, leaf = name.split(".")
+    for parent in parents:
+        target = target.setdefault(parent, {})
+    target[leaf] = value
+
+
+def _check_tables(raw: dict) -> None:
+    for table, values in raw.items():
+        if table not in SCHEMA:
+            raise InputError(f"case table [{table}] is unknown; valid tables are "
+                             + ", ".join(f"[{t}]" for t in SCHEMA))
+        allowed = SCHEMA[table]
+        if allowed is not None:
+            for key in values:
+                if key not in allowed:
+                    raise InputError(f"case key {table}.{key} is unknown; valid keys in "
+                                     f"[{table}] are {', '.join(sorted(allowed))}")
+
+
+def _number(cfg: dict, table: str, key: str, *, positive: bool = True) -> float:
+    if key not in cfg[table]:
+        raise InputError(f"{table}.{key} is missing; it is required here")
+    value = cfg[table][key]
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise InputError(f"{table}.{key} = {value!r}: valid is a finite number")
+    if positive and value <= 0:
+        raise InputError(f"{table}.{key} = {value!r}: valid is a number > 0")
+    return float(value)
+
+
+def _vector(cfg: dict, table: str, key: str, *, positive: bool = False) -> np.ndarray:
+    value = cfg[table].get(key)
+    ok = isinstance(value, list) and len(value) == 3 and all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+        for v in value)
+    if not ok or (positive and min(value) <= 0):
+        kind = "three numbers > 0" if positive else "three numbers"
+        raise InputError(f"{table}.{key} = {value!r}: valid is [x, y, z], {kind}")
+    return np.array(value, dtype=float)
+
+
+def make_body(cfg: dict, folder: Path) -> bodies.Body:
+    """Build the body of the [body] table."""
+    shape = cfg["body"].get("shape")
+    if shape not in SHAPES:
+        raise InputError(f"body.shape = {shape!r}: valid shapes are {', '.join(SHAPES)}")
+    allowed = {"shape", *SHAPES[shape], *OPTIONAL_BODY.get(shape, ())}
+    for key in cfg["body"]:
+        if key not in allowed:
+            raise InputError(f"body.{key} does not apply to shape {shape!r}; valid keys are "
+                             f"{', '.join(sorted(allowed))}")
+
+    def num(key, positive=True):
+        return _number(cfg, "body", key, positive=positive)
+
+    if shape == "circular_cylinder":
+        return bodies.EllipticCylinder(num("radius"), num("radius"), num("length"))
+    if shape == "elliptic_cylinder":
+        return bodies.EllipticCylinder(num("half_beam"), num("half_height"), num("length"))
+    if shape == "parabolic_cylinder":
+        half_beam, height = num("half_beam"), num("height")
+        return bodies.ConicCylinder(half_beam**2 / height, 0.0, height, num("length"))
+    if shape == "conic_cylinder":
+        return _conic(num("n"), num("m", positive=False), num("height"), num("length"))
+    if shape == "box":
+        beam, height = num("beam"), num("height")
+        radius = float(cfg["body"].get("bilge_radius", 0.0))
+        if not 0.0 <= radius <= min(beam / 2, height):
+            raise InputError(f"body.bilge_radius = {radius!r}: valid is 0 ≤ r ≤ "
+                             f"min(beam/2, height) = {min(beam / 2, height):g}")
+        return bodies.Box(beam, height, num("length"), radius)
+    if shape == "sphere":
+        r = num("radius")
+        return bodies.Ellipsoid([r, r, r])
+    if shape == "ellipsoid":
+        return bodies.Ellipsoid(_vector(cfg, "body", "semi_axes", positive=True))
+    from floatfoam import surfaces
+
+    if shape == "implicit":
+        resolution = int(cfg["body"].get("resolution", 96))
+        if resolution < 8:
+            raise InputError(f"body.resolution = {resolution}: valid is an integer ≥ 8")
+        return surfaces.implicit_body(str(cfg["body"]["expression"]), cfg["body"]["bounds"],
+                                      resolution)
+    scale = float(cfg["body"].get("scale", 1.0))
+    return surfaces.stl_body(folder / str(cfg["body"]["path"]), scale)
+
+
+def _conic(n: float, m: float, height: float, length: float) -> bodies.Body:
+    if m < 0:
+        full = -n / m
+        if height > full * (1 + 1e-12):
+            raise InputError(f"body.height = {height:g}: valid for this ellipse (m < 0) is "
+                             f"0 < height ≤ −n/m = {full:g}")
+        if height >= full * (1 - 1e-12):  # the whole ellipse
+            return bodies.EllipticCylinder(n / (2 * math.sqrt(-m)), full / 2, length)
+    return bodies.ConicCylinder(n, m, height, length)
+
+
+def _build(folder: Path, cfg: dict) -> Case:
+    body = make_body(cfg, folder)
+    fluid = {k: _number(cfg, "fluid", k) for k in ("rho", "nu", "g")}
+    depth = cfg["fluid"].get("depth", math.inf)
+    depth = math.inf if depth in (math.inf, "inf") else _number(cfg, "fluid", "depth")
+    mass = _mass(cfg, body, fluid["rho"])
+    cog = _vector(cfg, "mass", "cog")
+    if not body.contains(cog):
+        raise InputError(f"mass.cog = {cog.tolist()} is outside the body; valid is a point "
+                         "inside it (relative to its geometric centre)")
+    if "gyradius" not in cfg["mass"]:
+        raise InputError("mass.gyradius is missing; valid is [kx, ky, kz] in m, the radii of "
+                         "gyration about axes through G")
+    gyradius = _vector(cfg, "mass", "gyradius", positive=True)
+    release = {k: _number(cfg, "release", k, positive=False) for k in ("heave", "heel", "trim")}
+    return Case(name=folder.name, path=folder, raw=cfg, body=body, mass=mass, cog=cog,
+                gyradius=gyradius, depth=float(depth), release=release, **fluid)
+
+
+def _mass(cfg: dict, body: bodies.Body, rho: float) -> float:
+    given = [k for k in ("mass", "density") if k in cfg["mass"]]
+    if len(given) != 1:
+        raise InputError("[mass] needs exactly one of mass.mass (kg) or mass.density (kg/m³)")
+    volume = body.volume()
+    if given[0] == "density":
+        density = _number(cfg, "mass", "density")
+        mass = density * volume
+    else:
+        mass = _number(cfg, "mass", "mass")
+        density = mass / volume
+    if density >= rho:
+        raise InputError(f"mass.{given[0]} = {cfg['mass'][given[0]]!r} makes the body "
+                         f"({density:.6g} kg/m³) at least as dense as the fluid "
+                         f"(fluid.rho = {rho:g}); valid is a mean density below {rho:g} kg/m³ "
+                         f"(mass below {rho * volume:.6g} kg)")
+    return mass
