@@ -156,7 +156,8 @@ def box_integrals(beam: float, bilge_radius: float, depth: float) -> tuple[float
     if r > 0.0 and lower > 0.0:
         # √(r² − u²) with u = r − x, from u = r − lower to u = r.
         def g0(u):
-            return 0.5 * (u * math.sqrt(max(r * r - u * u, 0.0)) + r * r * math.asin(min(u / r, 1.0)))
+            root = math.sqrt(max(r * r - u * u, 0.0))
+            return 0.5 * (u * root + r * r * math.asin(min(u / r, 1.0)))
 
         def g1(u):
             return -max(r * r - u * u, 0.0) ** 1.5 / 3.0

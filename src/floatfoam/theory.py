@@ -96,8 +96,9 @@ def stiffness_matrix(case: Case, eq: Equilibrium | None = None) -> np.ndarray:
     c[0, 0] = rg * area
     c[0, 1] = c[1, 0] = rg * area * dy
     c[0, 2] = c[2, 0] = -rg * area * dx
-    c[1, 1] = rg * (i_xx + area * dy**2 + imm.volume * imm.centroid[2]) - case.mass * case.g * g_pos[2]
-    c[2, 2] = rg * (i_yy + area * dx**2 + imm.volume * imm.centroid[2]) - case.mass * case.g * g_pos[2]
+    vertical = rg * imm.volume * imm.centroid[2] - case.mass * case.g * g_pos[2]
+    c[1, 1] = rg * (i_xx + area * dy**2) + vertical
+    c[2, 2] = rg * (i_yy + area * dx**2) + vertical
     c[1, 2] = c[2, 1] = -rg * (i_xy + area * dx * dy)
     return c
 

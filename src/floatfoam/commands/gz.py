@@ -42,6 +42,7 @@ def run(args) -> int:
     for a, g in list(zip(curve.angles, curve.gz, strict=True))[::every]:
         print(f"{a:>10.1f} {g:>12.6g}")
     avs = curve.vanishing_angle
-    print(f"angle of vanishing stability: {'beyond ' + format(args.max_angle, 'g') if avs is None else format(avs, '.2f')} deg")
+    avs_text = f"beyond {args.max_angle:g}" if avs is None else f"{avs:.2f}"
+    print(f"angle of vanishing stability: {avs_text} deg")
     print(f"max GZ {curve.max_gz:.6g} m at {curve.max_gz_angle:g} deg; plot: {plot}")
     return 0

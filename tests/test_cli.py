@@ -1,0 +1,89 @@
+"""The CLI: JSON keys, tables, and one-line errors with exit code 2 for bad input."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from floatfoam.cli import main
+
+JSON_KEYS = {"draft", "displaced_volume", "waterplane_area", "KB", "BM_roll", "BM_pitch",
+             "GM_roll", "GM_pitch", "heave_period", "roll_period", "pitch_period",
+             "verdict_roll", "verdict_pitch", "memoir"}
+VERDICTS = {"oscillates", "neutral", "capsizes"}
+
+
+def run_json(capsys, *argv):
+    assert main(list(argv)) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+@pytest.mark.parametrize("case", ["cylinder_heave", "sphere", "ellipsoid", "elliptic_cylinder",
+                                  "parabolic_cylinder", "box_bilge", "superellipsoid_buoy",
+                                  "stl_pontoon"])
+def test_theory_json_keys(capsys, case):
+    data = run_json(capsys, "theory", case, "--json")
+    assert JSON_KEYS <= data.keys()
+    assert data["verdict_roll"] in VERDICTS and data["verdict_pitch"] in VERDICTS
+    for dof in ("roll", "pitch"):
+        oscillates = data[f"verdict_{dof}"] == "oscillates"
+        assert (data[f"{dof}_period"] is not None) == oscillates
+    assert data["heave_period"] > 0 and isinstance(data["memoir"], dict)
+
+
+def test_set_override_changes_result(capsys):
+    light = run_json(capsys, "theory", "cylinder_heave", "--json", "--set", "mass.density=250")
+    half = run_json(capsys, "theory", "cylinder_heave", "--json")
+    assert light["draft"] < half["draft"]
+
+
+def test_theory_table(capsys):
+    assert main(["theory", "sphere"]) == 0
+    out = capsys.readouterr().out
+    assert "heave period" in out and "GM roll" in out
+
+
+def test_gz_json_and_plot(capsys, tmp_path):
+    png = tmp_path / "gz.png"
+    data = run_json(capsys, "gz", "box_bilge", "--max-angle", "60", "--json", "--plot", str(png))
+    assert len(data["angles"]) == len(data["GZ"]) == 61
+    assert png.stat().st_size > 5000
+
+
+BAD_INPUT = [
+    (["--set", "mass.density=1200"], "mass.density"),
+    (["--set", "body.radius=-0.1"], "body.radius"),
+    (["--set", "body.radius=0"], "body.radius"),
+    (["--set", "mass.gyradius=[0.05, 0.0, 0.2]"], "mass.gyradius"),
+    (["--set", "mass.cog=[0.0, 0.0, 0.5]"], "mass.cog"),
+    (["--set", "body.colour=3"], "body.colour"),
+    (["--set", "nonsense"], "nonsense"),
+]
+
+
+@pytest.mark.parametrize("extra, name", BAD_INPUT)
+def test_bad_input_one_line_exit_2(capsys, extra, name):
+    assert main(["theory", "cylinder_heave", *extra]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and name in err and "valid" in err
+
+
+def test_implicit_not_closed(capsys):
+    # the surface z = 0.05 - x² … is open: F < 0 on the boundary of the bounds
+    args = ["theory", "superellipsoid_buoy", "--set", 'body.expression="z - 0.05"']
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert "not a closed surface" in err and "body.expression" in err
+
+
+def test_unknown_case(capsys):
+    assert main(["theory", "no_such_case"]) == 2
+    assert "cylinder_heave" in capsys.readouterr().err
+
+
+def test_exit_code_and_no_traceback_from_the_console_script():
+    proc = subprocess.run([sys.executable, "-m", "floatfoam.cli", "theory", "sphere", "--set",
+                           "mass.density=2000"], capture_output=True, text=True)
+    assert proc.returncode == 2
+    assert "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1
