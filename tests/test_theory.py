@@ -106,3 +106,18 @@ def test_gz_curve_vanishing_angle_box():
 def test_capsizing_body_has_zero_vanishing_angle():
     curve = gz_curve(load_case("parabolic_cylinder"), max_angle=30.0, step=5.0)
     assert curve.vanishing_angle == 0.0 and curve.gz[1] < 0
+
+
+@pytest.mark.parametrize("case", ["cylinder_heave", "sphere", "ellipsoid", "elliptic_cylinder",
+                                  "parabolic_cylinder"])
+def test_memoir_method_matches_exact_theory(case):
+    """floatfoam.memoir (the memoir's method, derived by hand in docs/memoir.md) and the
+    hydrostatics engine are independent derivations of the same linear theory."""
+    s = theory_summary(load_case(case))
+    memoir = s["memoir"]
+    assert memoir["source"] == "reconstructed"
+    for key in ("draft", "waterplane_area", "KB", "BM_roll", "heave_period"):
+        assert memoir[key] == pytest.approx(s[key], rel=1e-9), key
+    assert memoir["verdict_roll"] == s["verdict_roll"]
+    if s["roll_period"] is not None:
+        assert memoir["roll_period"] == pytest.approx(s["roll_period"], rel=1e-9)

@@ -49,13 +49,18 @@ def format_summary(s: dict) -> str:
     lines = [f"{s['case']}: {s['body']}{per}, mass {s['mass']:.6g} kg",
              f"equilibrium: heel {eq['heel']:.4g}°, trim {eq['trim']:.4g}°, "
              f"G at z = {eq['z_G']:.6g} m; {'closed form' if s['exact'] else 'numeric'}",
-             "", f"{'quantity':<20} {'exact theory':>14} {'memoir (print)':>15}  unit",
+             "", f"{'quantity':<20} {'exact theory':>14} {'memoir':>15}  unit",
              "-" * 58]
     memoir = s.get("memoir") or {}
     for key, label, unit in ROWS:
         value = s[key]
         printed = memoir.get(key)
         lines.append(f"{label:<20} {_fmt(value):>14} {_fmt(printed, blank=True):>15}  {unit}")
+    if memoir.get("source") == "reconstructed":
+        lines.append("memoir: the memoir's method (its printed formulas are not recoverable from "
+                     "the stored copies; see docs/memoir.md)")
+    elif not memoir:
+        lines.append("memoir: this body is not among the memoir's")
     return "\n".join(lines)
 
 
