@@ -15,7 +15,7 @@ export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export MPLBACKEND := Agg
 
-.PHONY: help setup run test test-fast lint theory gz bench-theory clean
+.PHONY: help setup run test test-fast lint theory gz report bench-theory clean
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
@@ -41,6 +41,9 @@ theory: setup  ## theory of CASE (SET="mass.density=600 ..." to override)
 
 gz: setup  ## righting-arm curve of CASE, with a PNG in build/CASE/gz.png
 	$(FF) gz $(CASE) $(SETARGS)
+
+report: setup  ## gather every case (theory, potential flow, finished CFD runs) into build/report/
+	$(FF) report
 
 bench-theory: setup  ## time `floatfoam theory` for every case (target < 1 s each)
 	$(PY) scripts/bench_theory.py

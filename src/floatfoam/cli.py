@@ -12,7 +12,7 @@ import sys
 
 from floatfoam.errors import InputError
 
-COMMANDS = ["theory", "gz"]
+COMMANDS = ["theory", "gz", "analyse", "report"]
 
 
 def build_parser() -> argparse.ArgumentParser:
