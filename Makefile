@@ -15,7 +15,7 @@ export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export MPLBACKEND := Agg
 
-.PHONY: help setup run test test-fast lint theory gz report bench-theory clean
+.PHONY: help setup run test test-fast lint theory gz potential decay-model report bench-theory bench-potential clean
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
@@ -41,6 +41,16 @@ theory: setup  ## theory of CASE (SET="mass.density=600 ..." to override)
 
 gz: setup  ## righting-arm curve of CASE, with a PNG in build/CASE/gz.png
 	$(FF) gz $(CASE) $(SETARGS)
+
+MODEL ?= cummins
+potential: setup  ## added mass, radiation damping, periods with added mass of CASE (+ PNG)
+	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 $(FF) potential $(CASE) $(SETARGS) --plot
+
+decay-model: setup  ## free-decay series of CASE, MODEL=linear|nonlinear|cummins
+	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 $(FF) decay-model $(CASE) --model $(MODEL) $(SETARGS)
+
+bench-potential: setup  ## time mesh + BEM (no cache) for every case (target < 30 s per body)
+	$(PY) scripts/bench_potential.py --threads 1
 
 report: setup  ## gather every case (theory, potential flow, finished CFD runs) into build/report/
 	$(FF) report

@@ -48,7 +48,7 @@ SCHEMA = {
     "domain": None,
     "mesh": None,
     "run": None,
-    "potential": None,
+    "potential": {"panels", "omega_min", "omega_max", "frequencies"},
 }
 DEFAULTS = {
     "fluid": {"rho": 1000.0, "nu": 1.0e-6, "g": 9.81, "rho_air": 1.0, "nu_air": 1.48e-5},

@@ -134,7 +134,7 @@ def mesh_immersed(vertices: np.ndarray, faces: np.ndarray, z_c: float, heel: flo
     """Immersed part of a closed, outward-oriented triangle mesh (body frame) at an attitude,
     by the divergence theorem on the wetted triangles (see the module docstring)."""
     tri = to_earth(vertices, z_c, heel, trim)[faces]
-    wet = _clip_triangles(tri)
+    wet = clip_triangles(tri)
     if len(wet) == 0:
         return _empty()
     a, b, c = wet[:, 0], wet[:, 1], wet[:, 2]
@@ -161,7 +161,7 @@ def mesh_immersed(vertices: np.ndarray, faces: np.ndarray, z_c: float, heel: flo
     return Immersed(volume, centroid, area, np.array([x_f, y_f]), np.array([i_xx, i_yy, i_xy]))
 
 
-def _clip_triangles(tri: np.ndarray) -> np.ndarray:
+def clip_triangles(tri: np.ndarray) -> np.ndarray:
     """Parts of triangles (T, 3, 3) below z = 0, as triangles with the same orientation."""
     below = tri[:, :, 2] < 0.0
     count = below.sum(axis=1)
