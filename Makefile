@@ -5,7 +5,7 @@ SHELL := /bin/bash
 
 CASE ?= cylinder_heave
 LEVEL ?= coarse
-NP ?= 2
+NP ?= 1
 SET ?=
 PY := .venv/bin/python
 FF := .venv/bin/floatfoam
@@ -15,7 +15,8 @@ export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export MPLBACKEND := Agg
 
-.PHONY: help setup run test test-fast lint theory gz potential decay-model report bench-theory bench-potential clean
+PHONY_CASES := cylinder_heave
+.PHONY: $(PHONY_CASES) help setup run test test-fast lint theory gz potential decay-model report bench-theory bench-potential clean
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
@@ -23,8 +24,11 @@ help:  ## list the targets
 setup:  ## install apt packages and the pinned .venv (idempotent)
 	@bash scripts/setup.sh
 
-run: setup  ## main job: the theory of the default case
-	$(FF) theory $(CASE) $(SETARGS)
+run: setup  ## main job: the default case (Ito cylinder) at the coarse level, with its theory
+	$(FF) run $(CASE) --level $(LEVEL) --np $(NP) $(SETARGS)
+
+cylinder_heave: setup  ## Ito (1977) cylinder heave decay (LEVEL=coarse|medium|fine NP=1)
+	$(FF) run cylinder_heave --level $(LEVEL) --np $(NP) $(SETARGS)
 
 test: setup  ## all tests: unit tests and the coarse OpenFOAM regression runs
 	$(PY) -m pytest -q

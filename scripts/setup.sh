@@ -5,9 +5,10 @@ set -eu
 cd "$(dirname "$0")/.."
 
 # OpenFOAM v1912 (ESI) from Debian, MPI, the headless GL/X libraries that the gmsh and vtk
-# wheels load, python3-venv for the venv, shellcheck for the lint.
+# wheels load, python3-venv for the venv, shellcheck for the lint, g++ and bzip2 to rebuild
+# interFoam from Debian's source package (scripts/build_solver.sh).
 APT_PACKAGES="openfoam openmpi-bin libglu1-mesa libgl1 libxcursor1 libxft2 libxinerama1
-libgomp1 libegl1 libgl1-mesa-dri python3-venv shellcheck"
+libgomp1 libegl1 libgl1-mesa-dri python3-venv shellcheck g++ bzip2"
 
 missing=""
 for pkg in $APT_PACKAGES; do
@@ -34,3 +35,6 @@ if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   .venv/bin/python -m pip install -q -e ".[dev]"
   echo "$want" > "$stamp"
 fi
+
+# interFoam rebuilt without the GCC 12 vectoriser bug of Debian's binary (docs/openfoam-v1912.md).
+bash scripts/build_solver.sh

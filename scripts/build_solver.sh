@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Rebuild interFoam from Debian's own openfoam source package with tree vectorisation off.
+#
+# Why (docs/openfoam-v1912.md): Debian 12's openfoam 1912 binaries were compiled by GCC 12 at
+# -O3; its loop vectoriser miscompiles the tensor-vector field loop that fvc::reconstruct
+# instantiates inside the solver, so interFoam's velocity is wrong in every second
+# non-orthogonal cell and water at rest blows up. The loop lives in the solver executable, so
+# recompiling the solver alone (against Debian's libraries) with -fno-tree-vectorize cures it.
+#
+# Output: build/solver/bin/interFoam. Idempotent: does nothing when the binary is there and
+# was built from the same flags. Needs root for apt (a deb-src entry for Debian bookworm).
+set -eu
+cd "$(dirname "$0")/.."
+OUT=build/solver
+BIN=$OUT/bin/interFoam
+FLAGS="-std=c++11 -m64 -DOPENFOAM=1912 -DWM_DP -DWM_LABEL_SIZE=32 -DNoRepository -ftemplate-depth-100 -O3 -fno-tree-vectorize -fPIC -w"
+STAMP=$OUT/bin/.flags
+if [ -x "$BIN" ] && [ "$(cat "$STAMP" 2>/dev/null)" = "$FLAGS" ]; then
+  exit 0
+fi
+mkdir -p "$OUT/download" "$OUT/bin"
+
+if [ ! -f "$OUT"/download/openfoam_1912.*.orig.tar.bz2 ] 2>/dev/null; then
+  sources=/etc/apt/sources.list.d/floatfoam-src.sources
+  if [ ! -f "$sources" ]; then
+    printf '%s\n' "Types: deb-src" "URIs: http://deb.debian.org/debian" "Suites: bookworm" \
+      "Components: main" "Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg" > "$sources"
+    apt-get update -qq
+  fi
+  echo "build_solver: downloading Debian's openfoam source package"
+  (cd "$OUT/download" && apt-get source --download-only -qq openfoam=1912.200626-1 2>/dev/null)
+fi
+
+SRC=$OUT/source
+if [ ! -d "$SRC/src/OpenFOAM" ]; then
+  echo "build_solver: unpacking the library headers and the interFoam sources"
+  rm -rf "$SRC" && mkdir -p "$SRC"
+  tar -xjf "$OUT"/download/openfoam_1912.*.orig.tar.bz2 -C "$SRC" --strip-components=1 \
+    --wildcards '*/src/*' '*/applications/solvers/multiphase/interFoam/*' \
+    '*/applications/solvers/multiphase/VoF/*'
+  # The headers of each library are gathered in its lnInclude folder (what wmake would do).
+  find "$SRC/src" -path '*/Make/files' | while read -r files; do
+    lib=$(dirname "$(dirname "$files")")
+    mkdir -p "$lib/lnInclude"
+    find "$lib" -path "$lib/lnInclude" -prune -o -type f \
+      \( -name '*.H' -o -name '*.C' -o -name '*.h' \) -print0 |
+      xargs -0 -I{} ln -sfr {} "$lib/lnInclude/"
+  done
+fi
+
+S=$(realpath "$SRC/src")
+includes=""
+for lib in OpenFOAM OSspecific/POSIX finiteVolume meshTools sampling dynamicFvMesh dynamicMesh \
+           transportModels/incompressible transportModels/interfaceProperties \
+           transportModels/twoPhaseMixture transportModels/immiscibleIncompressibleTwoPhaseMixture \
+           TurbulenceModels/turbulenceModels TurbulenceModels/incompressible; do
+  includes="$includes -I$S/$lib/lnInclude"
+done
+libs="-lfiniteVolume -lfvOptions -lmeshTools -lsampling -ldynamicMesh -ldynamicFvMesh
+      -lincompressibleTransportModels -linterfaceProperties
+      -limmiscibleIncompressibleTwoPhaseMixture -lturbulenceModels
+      -lincompressibleTurbulenceModels -lwaveModels -lOpenFOAM -ldl -lm"
+app=$(realpath "$SRC/applications/solvers/multiphase/interFoam")
+echo "build_solver: compiling interFoam with -fno-tree-vectorize (about a minute)"
+# shellcheck disable=SC2086  # word splitting of the flag lists is intended
+(cd "$app" && g++ $FLAGS -I. -I../VoF -I"$S/transportModels" $includes -c interFoam.C \
+   -o "$(realpath -m "$OLDPWD/$OUT/interFoam.o")")
+# shellcheck disable=SC2086
+g++ -m64 "$OUT/interFoam.o" -L/lib -Xlinker --add-needed -Xlinker --no-as-needed $libs -o "$BIN"
+echo "$FLAGS" > "$STAMP"
+echo "build_solver: $BIN"

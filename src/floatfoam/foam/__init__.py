@@ -1,0 +1,1 @@
+"""OpenFOAM case rendering and running."""

@@ -1,0 +1,208 @@
+"""Render an OpenFOAM run directory ``build/<case>/<level>/`` from a case.
+
+The shared dictionaries of ``cases/_common/`` are copied, then every case-specific value is
+set with foamlib from the case file ([fluid], [domain], [mesh], [run]) and the theory
+(equilibrium, mass properties). Templates are never run in place.
+"""
+
+from __future__ import annotations
+
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+from foamlib import FoamFieldFile, FoamFile
+
+from floatfoam.bodies import EllipticCylinder
+from floatfoam.case import CASES_DIR, Case
+from floatfoam.errors import InputError
+from floatfoam.foam.ogrid import OGrid, block_mesh_dict
+from floatfoam.geometry import rotation
+from floatfoam.theory import equilibrium
+
+COMMON = CASES_DIR / "_common"
+LEVELS = ("coarse", "medium", "fine")
+PATCHES = ("body", "walls", "atmosphere", "frontBack")
+
+
+def setting(case: Case, table: str, key: str, default=None):
+    """A value of a case table, or ``default``; missing without a default is an error."""
+    value = case.raw.get(table, {}).get(key, default)
+    if value is None:
+        raise InputError(f"{table}.{key} is missing; the CFD case needs it")
+    return value
+
+
+def level_factor(case: Case, level: str) -> float:
+    """Cell-count multiplier of a mesh level: r⁰, r¹, r² for coarse, medium, fine."""
+    if level not in LEVELS:
+        raise InputError(f"--level {level!r}: valid levels are {', '.join(LEVELS)}")
+    ratio = float(setting(case, "mesh", "refinement_ratio", math.sqrt(2.0)))
+    return ratio ** LEVELS.index(level)
+
+
+def release_state(case: Case) -> dict:
+    """Body centre and centre of mass (earth frame) at release, and the equilibrium z of G."""
+    eq = equilibrium(case)
+    heel = math.radians(case.release["heel"])
+    trim = math.radians(case.release["trim"])
+    centre_z = eq.z_c + case.release["heave"]
+    cog = rotation(heel, trim) @ case.cog + np.array([0.0, 0.0, centre_z])
+    g_eq = rotation(eq.heel, eq.trim) @ case.cog + np.array([0.0, 0.0, eq.z_c])
+    return {"centre_z": centre_z, "cog": cog, "z_G_equilibrium": float(g_eq[2]),
+            "heel": heel, "trim": trim}
+
+
+def ogrid_for(case: Case, level: str) -> OGrid:
+    body = case.body
+    if not (isinstance(body, EllipticCylinder) and body.b == body.c):
+        raise InputError(f"body.shape of case {case.name!r}: the CFD mesh is available for "
+                         "circular_cylinder only so far")
+    depth = case.depth if math.isfinite(case.depth) else float(setting(case, "domain", "depth"))
+    m = case.raw.get("mesh", {})
+    return OGrid(
+        radius=body.b, centre_z=release_state(case)["centre_z"],
+        half_length=float(setting(case, "domain", "half_length")), depth=depth,
+        air_height=float(setting(case, "domain", "air_height")),
+        thickness=float(setting(case, "domain", "thickness")),
+        square=float(setting(case, "mesh", "square_half_size")),
+        cells_side=int(m.get("cells_side", 40)), cells_radial=int(m.get("cells_radial", 16)),
+        radial_grading=float(m.get("radial_grading", 2.0)),
+        cells_horizontal=int(m.get("cells_horizontal", 40)),
+        cells_below=int(m.get("cells_below", 30)), cells_above=int(m.get("cells_above", 16)),
+        factor=level_factor(case, level),
+    )
+
+
+def render(case: Case, level: str, run_dir: Path, *, np_: int = 1) -> dict:
+    """Write the run directory; returns what the driver needs (end time, limits, state)."""
+    grid = ogrid_for(case, level)
+    state = release_state(case)
+    run_dir.mkdir(parents=True, exist_ok=True)
+    for sub in ("system", "constant"):
+        shutil.copytree(COMMON / sub, run_dir / sub, dirs_exist_ok=True)
+    _write_dict(run_dir / "system" / "blockMeshDict", block_mesh_dict(grid))
+    end_time = float(setting(case, "run", "end_time"))
+    _control(case, run_dir, grid, end_time)
+    _fluid(case, run_dir)
+    _motion(case, run_dir, grid, state)
+    _fields(run_dir / "0.orig")
+    _write_dict(run_dir / "system" / "setAlphaFieldDict",
+                {"field": "alpha.water", "type": "plane", "origin": [0.0, 0.0, 0.0],
+                 "direction": [0.0, 0.0, 1.0]})
+    decompose = FoamFile(run_dir / "system" / "decomposeParDict")
+    decompose["numberOfSubdomains"] = np_
+    decompose["coeffs"] = {"n": [1, np_, 1], "delta": 0.001}
+    return {"end_time": end_time, "cells": grid.cell_count(), **state}
+
+
+def _control(case: Case, run_dir: Path, grid: OGrid, end_time: float) -> None:
+    control = FoamFile(run_dir / "system" / "controlDict")
+    control["endTime"] = end_time
+    control["writeInterval"] = float(setting(case, "run", "write_interval", 0.1))
+    max_co = float(setting(case, "run", "max_courant", 0.5))
+    control["maxCo"] = max_co
+    control["maxAlphaCo"] = max_co
+    control["maxDeltaT"] = float(setting(case, "run", "max_delta_t", 0.005)) / grid.factor
+    if case.raw.get("run", {}).get("static_body", False):
+        pimple = FoamFile(run_dir / "system" / "fvSolution")
+        pimple["PIMPLE"]["correctPhi"] = False
+        pimple["PIMPLE"]["nOuterCorrectors"] = 1
+        return
+    control["functions"]["motion"] = {"type": "sixDoFRigidBodyState",
+                                      "libs": ['"libsixDoFRigidBodyState.so"'],
+                                      "angleFormat": "degrees"}
+
+
+def _fluid(case: Case, run_dir: Path) -> None:
+    transport = FoamFile(run_dir / "constant" / "transportProperties")
+    transport["water"] = {"transportModel": "Newtonian", "nu": case.nu, "rho": case.rho}
+    fluid = case.raw["fluid"]
+    transport["air"] = {"transportModel": "Newtonian", "nu": float(fluid["nu_air"]),
+                        "rho": float(fluid["rho_air"])}
+    _write_dict(run_dir / "constant" / "g",
+                {"dimensions": FoamFile.DimensionSet(length=1, time=-2),
+                 "value": [0.0, 0.0, -case.g]}, cls="uniformDimensionedVectorField")
+
+
+def _motion(case: Case, run_dir: Path, grid: OGrid, state: dict) -> None:
+    """Six-DoF body: the slab of thickness t carries mass M·t/L and inertia M·t/L·k²."""
+    share = grid.thickness / case.body.length
+    mass = case.mass * share
+    inertia = [mass * k * k for k in case.gyradius]
+    x_mid = grid.thickness / 2.0
+    cog = [x_mid, float(state["cog"][1]), float(state["cog"][2])]
+    if case.release["heel"] == 0.0:  # heave only: slide along z, no rotation
+        constraints = {
+            "heaveOnly": {"sixDoFRigidBodyMotionConstraint": "line", "centreOfRotation": cog,
+                          "direction": [0.0, 0.0, 1.0]},
+            "noRotation": {"sixDoFRigidBodyMotionConstraint": "orientation"},
+        }
+    else:  # 2D section: heave, sway and roll in its plane
+        constraints = {
+            "inPlane": {"sixDoFRigidBodyMotionConstraint": "plane", "centreOfRotation": cog,
+                        "normal": [1.0, 0.0, 0.0]},
+            "rollOnly": {"sixDoFRigidBodyMotionConstraint": "axis", "axis": [1.0, 0.0, 0.0]},
+        }
+    run = case.raw.get("run", {})
+    if run.get("static_body", False):  # body held at its release position (still-water test)
+        _write_dict(run_dir / "constant" / "dynamicMeshDict", {"dynamicFvMesh": "staticFvMesh"})
+        return
+    coeffs = {
+        "patches": ["body"],
+        "innerDistance": float(run.get("inner_distance", 0.3 * grid.square)),
+        "outerDistance": float(run.get("outer_distance", 1.6 * grid.square)),
+        "centreOfMass": cog,
+        "centreOfRotation": cog,
+        "mass": mass,
+        "momentOfInertia": inertia,
+        "report": True,
+        "accelerationRelaxation": float(run.get("acceleration_relaxation", 0.7)),
+        "solver": {"type": "Newmark"},
+        "constraints": constraints,
+    }
+    _write_dict(run_dir / "constant" / "dynamicMeshDict", {
+        "dynamicFvMesh": "dynamicMotionSolverFvMesh",
+        "motionSolverLibs": ['"libsixDoFRigidBodyMotion.so"'],
+        "motionSolver": "sixDoFRigidBodyMotion",
+        "sixDoFRigidBodyMotionCoeffs": coeffs,
+    })
+
+
+def _fields(folder: Path) -> None:
+    """Initial fields: water and air at rest; the free surface is set by setAlphaField."""
+    zero = [0.0, 0.0, 0.0]
+    specs = {
+        "U": ("volVectorField", FoamFile.DimensionSet(length=1, time=-1), zero, {
+            "body": {"type": "movingWallVelocity", "value": zero},
+            "walls": {"type": "noSlip"},
+            "atmosphere": {"type": "pressureInletOutletVelocity", "value": zero}}),
+        "p_rgh": ("volScalarField", FoamFile.DimensionSet(mass=1, length=-1, time=-2), 0.0, {
+            "body": {"type": "fixedFluxPressure", "value": 0.0},
+            "walls": {"type": "fixedFluxPressure", "value": 0.0},
+            "atmosphere": {"type": "totalPressure", "p0": 0.0}}),
+        "alpha.water": ("volScalarField", FoamFile.DimensionSet(), 0.0, {
+            "body": {"type": "zeroGradient"}, "walls": {"type": "zeroGradient"},
+            "atmosphere": {"type": "inletOutlet", "inletValue": 0.0, "value": 0.0}}),
+        "pointDisplacement": ("pointVectorField", FoamFile.DimensionSet(length=1), zero, {
+            "body": {"type": "calculated", "value": zero},
+            "walls": {"type": "fixedValue", "value": zero},
+            "atmosphere": {"type": "fixedValue", "value": zero}}),
+    }
+    folder.mkdir(parents=True, exist_ok=True)
+    for name, (cls, dims, internal, patches) in specs.items():
+        f = FoamFieldFile(folder / name)
+        f["FoamFile"] = {"version": 2.0, "format": "ascii", "class": cls, "object": name}
+        f.dimensions = dims
+        f.internal_field = internal
+        f.boundary_field = {**patches, "frontBack": {"type": "empty"}}
+
+
+def _write_dict(path: Path, entries: dict, cls: str = "dictionary") -> None:
+    if path.exists():
+        path.unlink()
+    f = FoamFile(path)
+    f["FoamFile"] = {"version": 2.0, "format": "ascii", "class": cls, "object": path.name}
+    for key, value in entries.items():
+        f[key] = value

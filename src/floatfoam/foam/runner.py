@@ -1,0 +1,217 @@
+"""Run OpenFOAM applications in a run directory: one log per application, serial or MPI,
+a progress line, a motion CSV written as the solver goes, early divergence detection, resume
+after an interruption.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import shutil
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from floatfoam.foam.logwatch import LogWatcher, Step
+from floatfoam.motioncsv import MOTION_COLUMNS
+
+FOAM_ENV = {
+    "WM_PROJECT_DIR": "/usr/share/openfoam",
+    "OMPI_ALLOW_RUN_AS_ROOT": "1",
+    "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+    "OMPI_MCA_btl_vader_single_copy_mechanism": "none",  # no CMA in containers
+}
+MARKERS = ".floatfoam"  # folder of step markers in a run directory
+
+
+class RunError(RuntimeError):
+    """An OpenFOAM application failed or the solution diverged (message: one line)."""
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Divergence thresholds: a step beyond them stops the run."""
+
+    max_courant: float = 20.0  # ~40× the usual maxCo 0.5: only a blow-up gets there
+    max_body_speed: float = 10.0  # m/s
+
+
+def foam_env() -> dict:
+    env = dict(os.environ)
+    env.update(FOAM_ENV)
+    return env
+
+
+def step_done(run_dir: Path, name: str) -> bool:
+    return (run_dir / MARKERS / f"{name}.done").exists()
+
+
+def mark_done(run_dir: Path, name: str) -> None:
+    (run_dir / MARKERS).mkdir(exist_ok=True)
+    (run_dir / MARKERS / f"{name}.done").write_text(time.strftime("%Y-%m-%d %H:%M:%S\n"))
+
+
+def run_app(run_dir: Path, name: str, argv: list[str], *, np_: int = 1,
+            log_name: str | None = None, quiet: bool = False) -> Path:
+    """Run one OpenFOAM utility to completion, logging to ``log.<name>``; skipped when its
+    marker says it already ran. Raises RunError with the log's path on failure."""
+    log = run_dir / f"log.{log_name or name}"
+    if step_done(run_dir, name):
+        return log
+    cmd = _mpi(argv, np_)
+    if not quiet:
+        print(f"[{run_dir.name}] {' '.join(argv)} → {log.name}", file=sys.stderr)
+    with open(log, "w") as fh:
+        proc = subprocess.run(cmd, cwd=run_dir, stdout=fh, stderr=subprocess.STDOUT,
+                              env=foam_env())
+    if proc.returncode != 0:
+        raise RunError(f"{argv[0]} failed (exit code {proc.returncode}); see {log}")
+    mark_done(run_dir, name)
+    return log
+
+
+def _mpi(argv: list[str], np_: int) -> list[str]:
+    if np_ <= 1:
+        return argv
+    return ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), *argv,
+            "-parallel"]
+
+
+def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
+               motion_csv: Path | None = None, limits: Limits = Limits(),
+               label: str = "", progress_every: float = 10.0,
+               log_name: str | None = None) -> list[Step]:
+    """Run the solver, watching its log: progress line, motion CSV, divergence.
+
+    The log of a resumed run is appended to ``log.<solver>`` after a separator, so earlier
+    output is never lost. Returns the parsed steps of this invocation.
+    """
+    name = log_name or Path(argv[0]).name
+    log = run_dir / f"log.{name}"
+    if log.exists():
+        with open(log, "a") as fh:
+            fh.write(f"\n// floatfoam: resumed at {time.strftime('%Y-%m-%d %H:%M:%S')}\n")
+    offset = log.stat().st_size if log.exists() else 0
+    watcher = LogWatcher()
+    writer = MotionWriter(motion_csv) if motion_csv else None
+    start = time.monotonic()
+    with open(log, "a") as fh:
+        proc = subprocess.Popen(_mpi(argv, np_), cwd=run_dir, stdout=fh,
+                                stderr=subprocess.STDOUT, env=foam_env())
+    last_report = -math.inf
+    t0 = None
+    try:
+        with open(log) as reader:
+            reader.seek(offset)
+            while True:
+                finished = proc.poll() is not None
+                new_steps = watcher.feed(reader.read())
+                if finished:
+                    new_steps += watcher.close()
+                if new_steps:
+                    t0 = new_steps[0].time if t0 is None else t0
+                    if writer:
+                        writer.append(new_steps)
+                    problem = diverged(new_steps, limits)
+                    if problem:
+                        raise RunError(f"{label or run_dir.name}: diverged at t = "
+                                       f"{new_steps[-1].time:g} s ({problem}); see {log}")
+                if watcher.fatal:
+                    raise RunError(f"{label or run_dir.name}: {name} stopped: "
+                                   f"{watcher.fatal.strip()}; see {log}")
+                now = time.monotonic()
+                if watcher.steps and (now - last_report >= progress_every or finished):
+                    last_report = now
+                    print(progress_line(label or run_dir.name, watcher.steps[-1], t0, end_time,
+                                        now - start), file=sys.stderr, flush=True)
+                if finished:
+                    break
+                time.sleep(0.5)
+    finally:
+        if proc.poll() is None:
+            proc.terminate()
+            try:
+                proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+    if proc.returncode != 0:
+        raise RunError(f"{label or run_dir.name}: {name} failed (exit code "
+                       f"{proc.returncode}); see {log}")
+    return watcher.steps
+
+
+def diverged(steps: list[Step], limits: Limits) -> str | None:
+    """A reason if any step shows a blow-up: NaN, Courant or body speed beyond the limits."""
+    for s in steps:
+        co = s.courant_max
+        if co is not None and not math.isfinite(co):
+            return f"Courant number is {co}"
+        if co is not None and co > limits.max_courant:
+            return f"Courant number {co:.3g} > {limits.max_courant:g}"
+        for name in ("centre_of_mass", "velocity", "angular_velocity"):
+            value = getattr(s, name)
+            if value is not None and not np.all(np.isfinite(value)):
+                return f"body {name.replace('_', ' ')} is not finite"
+        speed = float(np.linalg.norm(s.velocity)) if s.velocity is not None else 0.0
+        if speed > limits.max_body_speed:
+            return f"body speed {speed:.3g} m/s > {limits.max_body_speed:g} m/s"
+    return None
+
+
+def progress_line(label: str, step: Step, t0: float | None, end_time: float,
+                  wall: float) -> str:
+    """``[label] t = 1.234/3.2 s (38.6 %)  wall 2:31  ETA 4:02  Co 0.41``."""
+    t0 = step.time if t0 is None else t0
+    fraction = min(max(step.time / end_time, 0.0), 1.0) if end_time > 0 else 1.0
+    done_here = step.time - t0
+    eta = (end_time - step.time) * wall / done_here if done_here > 0 else math.nan
+    return (f"[{label}] t = {step.time:.4g}/{end_time:g} s ({100 * fraction:.1f} %)  "
+            f"wall {_clock(wall)}  ETA {_clock(eta)}"
+            + (f"  Co {step.courant_max:.3g}" if step.courant_max is not None else ""))
+
+
+def _clock(seconds: float) -> str:
+    if not math.isfinite(seconds):
+        return "--:--"
+    seconds = int(round(seconds))
+    h, rest = divmod(seconds, 3600)
+    m, s = divmod(rest, 60)
+    return f"{h}:{m:02d}:{s:02d}" if h else f"{m}:{s:02d}"
+
+
+class MotionWriter:
+    """Append motion rows to a CSV as the solver goes (header written once). On resume,
+    rows at or after the restart time replace the ones of the interrupted run."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self.last_time = -math.inf
+
+    def append(self, steps: list[Step]) -> None:
+        rows = [r for r in (s.motion_row() for s in steps) if r is not None]
+        if not rows:
+            return
+        if not self.path.exists():
+            self.path.write_text(",".join(MOTION_COLUMNS) + "\n")
+        elif self.last_time == -math.inf:
+            self._truncate_from(rows[0][0])
+        with open(self.path, "a") as fh:
+            for row in rows:
+                fh.write(",".join(f"{v:.10g}" for v in row) + "\n")
+        self.last_time = rows[-1][0]
+
+    def _truncate_from(self, t: float) -> None:
+        lines = self.path.read_text().splitlines()
+        kept = [lines[0]] + [ln for ln in lines[1:] if ln and float(ln.split(",")[0]) < t - 1e-12]
+        self.path.write_text("\n".join(kept) + "\n")
+
+
+def move_aside(run_dir: Path) -> Path:
+    """Rename a run directory to ``<name>.old-<timestamp>`` (nothing is deleted)."""
+    target = run_dir.with_name(f"{run_dir.name}.old-{time.strftime('%Y%m%d-%H%M%S')}")
+    shutil.move(str(run_dir), target)
+    return target
