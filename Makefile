@@ -16,7 +16,7 @@ export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export MPLBACKEND := Agg
 
 PHONY_CASES := cylinder_heave
-.PHONY: $(PHONY_CASES) help setup run test test-fast lint theory gz potential decay-model report bench-theory bench-potential clean
+.PHONY: $(PHONY_CASES) help setup run test mesh mesh-table test-fast lint theory gz potential decay-model report bench-theory bench-potential clean
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
@@ -55,6 +55,13 @@ decay-model: setup  ## free-decay series of CASE, MODEL=linear|nonlinear|cummins
 
 bench-potential: setup  ## time mesh + BEM (no cache) for every case (target < 30 s per body)
 	$(PY) scripts/bench_potential.py --threads 1
+
+mesh: setup  ## body STL + gmsh fluid domain of CASE at LEVEL (coarse|medium|fine|all), checked
+	$(PY) meshes/body_surface.py $(CASE) --level $(LEVEL) $(SETARGS)
+	$(PY) meshes/fluid_domain.py $(CASE) --level $(LEVEL) --check $(SETARGS)
+
+mesh-table: setup  ## mesh levels table (Markdown) of every case, with checkMesh quality (minutes)
+	$(PY) meshes/mesh_table.py --domains --check
 
 report: setup  ## gather every case (theory, potential flow, finished CFD runs) into build/report/
 	$(FF) report

@@ -45,9 +45,11 @@ SCHEMA = {
     "fluid": {"rho", "nu", "g", "depth", "rho_air", "nu_air"},
     "release": {"heave", "heel", "trim"},
     "reference": None,
-    "domain": None,
+    "domain": {"half_length", "half_width", "depth", "air_height", "band", "thickness"},
     "mesh": None,
-    "run": None,
+    "run": {"end_time", "write_interval", "max_courant", "max_delta_t",
+            "acceleration_relaxation", "inner_distance", "outer_distance", "solver",
+            "static_body", "divergence_courant", "divergence_body_speed"},
     "potential": {"panels", "omega_min", "omega_max", "frequencies"},
 }
 DEFAULTS = {

@@ -12,7 +12,7 @@ import sys
 
 from floatfoam.errors import InputError
 
-COMMANDS = ["theory", "gz", "run", "analyse", "report", "potential", "decay_model"]
+COMMANDS = ["theory", "gz", "mesh", "run", "analyse", "report", "potential", "decay_model"]
 
 
 def build_parser() -> argparse.ArgumentParser:

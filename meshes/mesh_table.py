@@ -1,0 +1,14 @@
+#!/usr/bin/env python3
+"""Mesh levels table (Markdown) of some or all cases: ``meshes/mesh_table.py [CASE ...]
+[--domains [--check]] [--json]``.
+
+Same arguments as ``floatfoam mesh table`` (see floatfoam.commands.mesh).
+"""
+
+import sys
+
+from floatfoam.commands import mesh
+
+if __name__ == "__main__":
+    sys.exit(mesh.script_main("mesh_table.py", __doc__, mesh.add_table_arguments,
+                              mesh.run_table))

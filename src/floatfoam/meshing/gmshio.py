@@ -1,0 +1,149 @@
+"""gmsh plumbing: one session at a time, mesh data out as NumPy arrays, files out.
+
+gmsh keeps one global model; :func:`session` opens it, sets quiet single-threaded defaults (the
+cores belong to the solver) and always finalises it, even when meshing fails. Sessions do not
+nest: compute what needs its own session (e.g. the body's polygon) before opening another.
+"""
+
+from __future__ import annotations
+
+import struct
+from contextlib import contextmanager
+from pathlib import Path
+
+import numpy as np
+
+TRIANGLE, QUAD = 2, 3  # gmsh element types
+
+
+@contextmanager
+def session(name: str = "floatfoam", verbosity: int = 1):
+    """Open a gmsh model ``name``; yield the ``gmsh`` module; finalise on exit."""
+    import gmsh
+
+    if gmsh.isInitialized():
+        raise RuntimeError("a gmsh session is already open: gmsh has one global model")
+    gmsh.initialize(readConfigFiles=False, interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Verbosity", verbosity)
+        gmsh.option.setNumber("General.NumThreads", 1)
+        gmsh.model.add(name)
+        yield gmsh
+    finally:
+        gmsh.finalize()
+
+
+def node_table() -> tuple[np.ndarray, np.ndarray]:
+    """All mesh nodes: (tags, coordinates (N, 3)), tags sorted."""
+    import gmsh
+
+    tags, coords, _ = gmsh.model.mesh.getNodes(returnParametricCoord=False)
+    order = np.argsort(tags)
+    return tags[order].astype(np.int64), coords.reshape(-1, 3)[order]
+
+
+def surface_triangles(surface_tags) -> tuple[np.ndarray, np.ndarray]:
+    """Triangles of the surfaces ``surface_tags`` as one compact (vertices, faces) mesh, nodes
+    shared where the surfaces meet, every surface oriented like its neighbours (gmsh orients
+    each surface's elements by its own parametrisation, not by the volume it bounds)."""
+    import gmsh
+
+    patches = [gmsh.model.mesh.getElementsByType(TRIANGLE, abs(tag))[1].reshape(-1, 3)
+               .astype(np.int64) for tag in surface_tags]
+    elements = np.concatenate(consistent_orientation(patches))
+    tags, coords = node_table()
+    used, inverse = np.unique(elements, return_inverse=True)
+    return coords[np.searchsorted(tags, used)], inverse.reshape(-1, 3)
+
+
+def consistent_orientation(patches: list[np.ndarray]) -> list[np.ndarray]:
+    """Flip whole patches (each consistently oriented in itself) so that every edge shared by
+    two patches is run in opposite directions by them (breadth-first over the patches)."""
+    directed = [{e for tri in p.tolist() for e in ((tri[0], tri[1]), (tri[1], tri[2]),
+                                                   (tri[2], tri[0]))} for p in patches]
+    flipped = [None] * len(patches)
+    flipped[0] = False
+    queue = [0]
+    while queue:
+        i = queue.pop()
+        edges_i = directed[i] if not flipped[i] else {(b, a) for a, b in directed[i]}
+        for j in range(len(patches)):
+            if flipped[j] is not None:
+                continue
+            if edges_i & directed[j]:
+                flipped[j] = True
+            elif edges_i & {(b, a) for a, b in directed[j]}:
+                flipped[j] = False
+            else:
+                continue
+            queue.append(j)
+    return [p[:, ::-1] if f else p for p, f in zip(patches, flipped, strict=True)]  # None: alone
+
+
+def curve_chain(curve_tags) -> np.ndarray:
+    """Nodes of the 1D mesh of ``curve_tags`` chained into one path (closed loops are returned
+    without repeating the first node), coordinates (N, 3)."""
+    import gmsh
+
+    segments = np.concatenate([
+        gmsh.model.mesh.getElementsByType(1, abs(tag))[1].reshape(-1, 2) for tag in curve_tags
+    ]).astype(np.int64)
+    neighbours: dict[int, list[int]] = {}
+    for a, b in segments.tolist():
+        neighbours.setdefault(a, []).append(b)
+        neighbours.setdefault(b, []).append(a)
+    ends = [n for n, adj in neighbours.items() if len(adj) == 1]
+    start = ends[0] if ends else segments[0, 0]
+    path, previous = [int(start)], None
+    while True:
+        options = [n for n in neighbours[path[-1]] if n != previous]
+        if not options or (not ends and options[0] == path[0]):
+            break
+        previous = path[-1]
+        path.append(options[0])
+        if len(path) > len(neighbours):
+            raise RuntimeError("the body's curves do not form one chain")
+    tags, coords = node_table()
+    return coords[np.searchsorted(tags, np.array(path))]
+
+
+def element_counts(dim: int) -> dict[str, int]:
+    """Number of mesh elements of dimension ``dim`` by type name (e.g. Hexahedron 8)."""
+    import gmsh
+
+    counts: dict[str, int] = {}
+    types, tags, _ = gmsh.model.mesh.getElements(dim)
+    for etype, etags in zip(types, tags, strict=True):
+        name = gmsh.model.mesh.getElementProperties(etype)[0].split()[0]
+        counts[name] = counts.get(name, 0) + len(etags)
+    return counts
+
+
+def write_msh22(path: Path) -> Path:
+    """Write the mesh as MSH 2.2 ASCII (what gmshToFoam reads): physical entities only."""
+    import gmsh
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    gmsh.option.setNumber("Mesh.MshFileVersion", 2.2)
+    gmsh.option.setNumber("Mesh.Binary", 0)
+    gmsh.option.setNumber("Mesh.SaveAll", 0)
+    gmsh.write(str(path))
+    return path
+
+
+def write_stl(path: Path, vertices: np.ndarray, faces: np.ndarray, name: str = "body") -> Path:
+    """Binary STL of a triangle mesh (float32 coordinates; the header names the solid but does
+    not start with "solid", which readers take for an ASCII file)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tri = vertices[faces]
+    normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    lengths = np.linalg.norm(normals, axis=1)
+    normals /= np.where(lengths > 0, lengths, 1.0)[:, None]
+    record = np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
+    data = np.zeros(len(faces), dtype=record)
+    data["n"], data["v"] = normals, tri
+    header = f"{name}: floatfoam binary STL, metres".encode()[:80].ljust(80, b" ")
+    with open(path, "wb") as fh:
+        fh.write(header + struct.pack("<I", len(faces)))
+        fh.write(data.tobytes())
+    return path

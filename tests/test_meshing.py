@@ -1,0 +1,180 @@
+"""Meshes: body surfaces, discrete volumes, 2D/wedge/3D fluid domains and mesh levels."""
+
+import math
+import re
+import shutil
+
+import numpy as np
+import pytest
+
+from floatfoam.case import CASES_DIR, load_case
+from floatfoam.errors import InputError
+from floatfoam.geometry import mesh_volume, open_edges
+from floatfoam.meshing import body_surface, levels
+from floatfoam.meshing.domains import build_domain
+from floatfoam.meshing.planar import progression
+from floatfoam.meshing.volume_report import discrete_volume_report
+from floatfoam.surfaces import stl_body
+
+CASES = sorted(p.parent.name for p in CASES_DIR.glob("*/case.toml")
+               if not p.parent.name.startswith("_"))
+R = math.sqrt(2)  # the default refinement ratio
+
+
+def volume_tolerance(level: str) -> float:
+    """Relative volume error allowed at a level. Nodes lie on the exact surface, so the
+    discrete body is inscribed and loses ~ (h/ρ)²/12 of its volume for a cell h on a radius of
+    curvature ρ (sagitta h²/8ρ over a chord); with h = D/24 and ρ ≥ D/2 at coarse that is
+    ≤ 6e-4 for a section, and a triangulated ellipsoid measured 2.5e-3 (sphere, coarse). 5e-3
+    at coarse, second order (÷ r² per level) after."""
+    return 5e-3 / R ** (2 * levels.level_index(level))
+
+
+@pytest.fixture(scope="module")
+def cases():
+    return {name: load_case(name) for name in CASES}
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_body_stl_is_closed_and_holds_its_volume(name, cases, tmp_path):
+    case = cases[name]
+    spec = levels.mesh_spec(case, "coarse")
+    written = body_surface.write_body(case, spec, levels.Pose(), tmp_path)
+    again = stl_body(written["stl"])  # raises unless watertight and consistently oriented
+    vertices, faces = again.vertices, again.faces
+    assert open_edges(faces) == 0
+    error = (mesh_volume(vertices, faces) - case.body.volume()) / case.body.volume()
+    assert abs(error) < volume_tolerance("coarse")
+    if case.body.is_section:
+        polygon = np.loadtxt(written["section"], delimiter=",", skiprows=1)
+        assert len(polygon) >= 40  # ≥ 24 cells across D: a closed curve has ≥ 2 × 24
+
+
+def test_section_volume_converges_at_second_order(cases):
+    errors = [discrete_volume_report(cases["cylinder_heave"], level)["volume_error"]
+              for level in levels.LEVELS]
+    assert all(e < 0 for e in errors)  # inscribed polygon
+    for coarse, fine in zip(errors[:-1], errors[1:], strict=True):
+        # (2π²/3)/N² for a regular N-gon: each level multiplies N by r, divides the error by
+        # r² = 2; N is rounded, hence ±10 %
+        assert coarse / fine == pytest.approx(R**2, rel=0.1)
+
+
+@pytest.mark.parametrize("name", ["cylinder_heave", "box_bilge", "parabolic_cylinder",
+                                  "sphere", "stl_pontoon"])
+def test_discrete_volume_report(name, cases):
+    case = cases[name]
+    report = discrete_volume_report(case, "coarse")
+    assert report["immersed_exact"] == pytest.approx(case.displacement, rel=1e-9)
+    assert abs(report["immersed_error"]) < volume_tolerance("coarse")
+    # the equilibrium shift is the volume deficit spread over the waterplane (first order)
+    from floatfoam.theory import equilibrium
+
+    area = equilibrium(case).immersed.waterplane_area
+    deficit = report["immersed_discrete"] - report["immersed_exact"]
+    assert report["equilibrium_shift"] == pytest.approx(deficit / area, rel=0.05, abs=1e-9)
+    if name == "stl_pontoon":  # the case's own triangles: what the theory uses
+        assert report["immersed_error"] == 0.0
+    if name == "sphere":
+        assert abs(report["meridian"]["immersed_error"]) < volume_tolerance("coarse")
+
+
+def test_conic_section_is_exact(cases):
+    body = cases["parabolic_cylinder"].body
+    polygon = body_surface.section_polygon(body, levels.mesh_spec(cases["parabolic_cylinder"],
+                                                                  "coarse"))
+    xi = polygon[:, 1] + body.h / 2
+    wall = xi < body.h - 1e-12
+    # nodes on the rational Bézier arcs lie on y² = n ξ + m ξ² to round-off
+    assert np.abs(polygon[wall, 0] ** 2 - body.n * xi[wall] - body.m * xi[wall] ** 2).max() \
+        < 1e-12
+
+
+def test_progression_fills_its_length():
+    n, q = progression(2.9, 0.00635, 1.1)
+    assert 1.0 < q <= 1.1
+    assert 0.00635 * (q**n - 1) / (q - 1) == pytest.approx(2.9, rel=1e-10)
+    assert progression(0.01, 0.00635, 1.1) == (2, 1.0)
+
+
+def _physical_names(path):
+    text = path.read_text()
+    assert text.startswith("$MeshFormat\n2.2 0 8")
+    block = text[text.index("$PhysicalNames"):text.index("$EndPhysicalNames")]
+    return {name: int(dim) for dim, _, name in re.findall(r'^(\d) (\d+) "(\w+)"', block,
+                                                           flags=re.M)}
+
+
+def test_2d_domain_groups_and_levels(cases, tmp_path):
+    case = cases["cylinder_heave"]
+    cells = []
+    for level in levels.LEVELS:
+        result = build_domain(case, level, "auto", path=tmp_path / f"{level}.msh")
+        assert result["kind"] == "2d"
+        assert set(result["cell_types"]) == {"Hexahedron"}  # all quads, extruded
+        cells.append(result["cells"])
+        if level == "coarse":
+            names = _physical_names(tmp_path / "coarse.msh")
+            assert names == {"body": 2, "bottom": 2, "atmosphere": 2, "sides": 2,
+                             "frontAndBack": 2, "fluid": 3}
+            assert result["patches"]["frontAndBack"] == 2 * result["cells"]
+            # the body patch is the section polygon: same immersed volume as the report
+            assert abs(result["body_patch"]["immersed_error"]) < volume_tolerance("coarse")
+    for coarse, fine in zip(cells[:-1], cells[1:], strict=True):
+        # cell counts × r² = 2 per level in 2D; counts are rounded per block, hence 3 %
+        assert fine / coarse == pytest.approx(R**2, rel=0.03)
+
+
+def test_wedge_domain(cases, tmp_path):
+    result = build_domain(cases["sphere"], "coarse", "auto", path=tmp_path / "w.msh")
+    assert result["kind"] == "wedge"
+    assert set(_physical_names(tmp_path / "w.msh")) == {"body", "bottom", "atmosphere",
+                                                        "sides", "wedge0", "wedge1", "fluid"}
+    # quadrangles revolve into hexahedra; only those with an edge on the axis become prisms
+    assert set(result["cell_types"]) == {"Hexahedron", "Prism"}
+    assert result["cell_types"]["Prism"] < 0.02 * result["cells"]
+    with pytest.raises(InputError, match="wedge"):
+        build_domain(cases["ellipsoid"], "coarse", "wedge", path=tmp_path / "e.msh")
+
+
+def test_3d_domain(cases, tmp_path):
+    case = load_case("sphere")
+    case.raw["mesh"] = {"gmsh": {"body_cells_3d": 6}}  # a quick, coarser mesh for the test
+    result = build_domain(case, "coarse", "3d", path=tmp_path / "s.msh")
+    assert set(_physical_names(tmp_path / "s.msh")) == {"body", "bottom", "atmosphere",
+                                                        "sides", "fluid"}
+    # h = D/6 on a sphere: the inscribed triangles lose ~1.5 % of the immersed volume
+    assert -0.03 < result["body_patch"]["immersed_error"] < 0.0
+
+
+def test_bad_inputs(cases):
+    case = load_case("cylinder_heave")
+    with pytest.raises(InputError, match="level"):
+        levels.mesh_spec(case, "ultrafine")
+    case.raw["mesh"] = {"cells_side": 40, "gmsh": {"body_cell": 24}}  # others' keys: fine
+    with pytest.raises(InputError, match="mesh.gmsh.body_cell"):
+        levels.mesh_spec(case, "coarse")
+    case.raw["mesh"] = {}
+    case.raw["domain"] = {"depth": 2.0}
+    with pytest.raises(InputError, match="fluid.depth"):
+        levels.tank(case)
+    case.raw["domain"] = {"half_lenght": 2.0}
+    with pytest.raises(InputError, match="half_lenght"):
+        levels.tank(case)
+    case.raw["domain"] = {"half_length": 0.1}
+    with pytest.raises(InputError, match="domain.half_length"):
+        build_domain(case, "coarse", "2d")
+    with pytest.raises(InputError, match="not a 2D section"):
+        build_domain(cases["sphere"], "coarse", "2d")
+
+
+@pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")
+def test_gmsh_to_foam_and_check_mesh(cases, tmp_path):
+    from floatfoam.meshing.foamcheck import convert_and_check
+
+    result = build_domain(cases["cylinder_heave"], "coarse", "2d", path=tmp_path / "c.msh")
+    quality = convert_and_check(tmp_path / "c.msh", tmp_path / "foam")
+    assert quality["mesh_ok"]
+    assert quality["cells"] == result["cells"]
+    assert quality["patches"]["frontAndBack"] == "empty"
+    assert quality["max_non_orthogonality"] < 35.0  # measured 18.6° (unstructured core)
