@@ -31,8 +31,8 @@ class RunResult:
     already_finished: bool = False
 
 
-def run_dir_for(case: Case, level: str) -> Path:
-    return ROOT / "build" / case.name / level
+def run_dir_for(case: Case, level: str, build_dir: Path | None = None) -> Path:
+    return (build_dir or ROOT / "build") / case.name / level
 
 
 def settings_digest(case: Case, level: str) -> str:
@@ -50,9 +50,10 @@ def solver_path(case: Case) -> Path:
     return path
 
 
-def prepare(case: Case, level: str, np_: int, force: bool) -> tuple[Path, bool, bool]:
+def prepare(case: Case, level: str, np_: int, force: bool,
+            build_dir: Path | None = None) -> tuple[Path, bool, bool]:
     """The run directory, whether it resumes, and whether it is already finished."""
-    run_dir = run_dir_for(case, level)
+    run_dir = run_dir_for(case, level, build_dir)
     digest = settings_digest(case, level)
     stamp = run_dir / runner.MARKERS / "settings"
     if run_dir.exists():
@@ -75,12 +76,14 @@ def prepare(case: Case, level: str, np_: int, force: bool) -> tuple[Path, bool, 
     return run_dir, False, False
 
 
-def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = False) -> RunResult:
-    """Run ``case`` at ``level`` on ``np_`` MPI ranks (see the module docstring)."""
+def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = False,
+             build_dir: Path | None = None) -> RunResult:
+    """Run ``case`` at ``level`` on ``np_`` MPI ranks (see the module docstring); the run
+    directory is ``<build_dir>/<case>/<level>`` (``build/`` by default)."""
     if np_ < 1:
         raise InputError(f"--np {np_}: valid is a whole number ≥ 1")
     solver = solver_path(case)
-    run_dir, resumed, finished = prepare(case, level, np_, force)
+    run_dir, resumed, finished = prepare(case, level, np_, force, build_dir)
     motion = run_dir / "motion.csv"
     info_file = run_dir / runner.MARKERS / "info.json"
     if finished:

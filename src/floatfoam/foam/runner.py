@@ -168,7 +168,9 @@ def progress_line(label: str, step: Step, t0: float | None, end_time: float,
     t0 = step.time if t0 is None else t0
     fraction = min(max(step.time / end_time, 0.0), 1.0) if end_time > 0 else 1.0
     done_here = step.time - t0
-    eta = (end_time - step.time) * wall / done_here if done_here > 0 else math.nan
+    # No ETA before 1 % of the run: the first steps (start-up, tiny Δt) say nothing yet.
+    enough = done_here > 0.01 * (end_time - t0)
+    eta = (end_time - step.time) * wall / done_here if enough else math.nan
     return (f"[{label}] t = {step.time:.4g}/{end_time:g} s ({100 * fraction:.1f} %)  "
             f"wall {_clock(wall)}  ETA {_clock(eta)}"
             + (f"  Co {step.courant_max:.3g}" if step.courant_max is not None else ""))
