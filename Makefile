@@ -5,7 +5,7 @@ SHELL := /bin/bash
 
 CASE ?= cylinder_heave
 LEVEL ?= coarse
-NP ?= 1
+NP ?= 2
 SET ?=
 PY := .venv/bin/python
 FF := .venv/bin/floatfoam
@@ -16,7 +16,7 @@ export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export MPLBACKEND := Agg
 
 PHONY_CASES := cylinder_heave
-.PHONY: $(PHONY_CASES) help setup run test mesh mesh-table test-fast lint theory gz potential decay-model report bench-theory bench-potential clean
+.PHONY: $(PHONY_CASES) help setup run test mesh mesh-table test-fast lint theory gz potential decay-model report bench-theory bench-potential bench-cfd clean
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
@@ -27,7 +27,7 @@ setup:  ## install apt packages and the pinned .venv (idempotent)
 run: setup  ## main job: the default case (Ito cylinder) at the coarse level, with its theory
 	$(FF) run $(CASE) --level $(LEVEL) --np $(NP) $(SETARGS)
 
-cylinder_heave: setup  ## Ito (1977) cylinder heave decay (LEVEL=coarse|medium|fine NP=1)
+cylinder_heave: setup  ## Ito (1977) cylinder heave decay (LEVEL=coarse|medium|fine NP=2)
 	$(FF) run cylinder_heave --level $(LEVEL) --np $(NP) $(SETARGS)
 
 test: setup  ## all tests: unit tests and the coarse OpenFOAM regression runs
@@ -65,6 +65,9 @@ mesh-table: setup  ## mesh levels table (Markdown) of every case, with checkMesh
 
 report: setup  ## gather every case (theory, potential flow, finished CFD runs) into build/report/
 	$(FF) report
+
+bench-cfd: setup  ## cylinder_heave coarse CFD: cells, steps, wall time, serial vs 2 ranks
+	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2
 
 bench-theory: setup  ## time `floatfoam theory` for every case (target < 1 s each)
 	$(PY) scripts/bench_theory.py
