@@ -20,7 +20,8 @@ if [ -x "$BIN" ] && [ "$(cat "$STAMP" 2>/dev/null)" = "$FLAGS" ]; then
 fi
 mkdir -p "$OUT/download" "$OUT/bin"
 
-if [ ! -f "$OUT"/download/openfoam_1912.*.orig.tar.bz2 ] 2>/dev/null; then
+TARBALL=$OUT/download/openfoam_1912.200626.orig.tar.bz2
+if [ ! -f "$TARBALL" ]; then
   sources=/etc/apt/sources.list.d/floatfoam-src.sources
   if [ ! -f "$sources" ]; then
     printf '%s\n' "Types: deb-src" "URIs: http://deb.debian.org/debian" "Suites: bookworm" \
@@ -35,7 +36,7 @@ SRC=$OUT/source
 if [ ! -d "$SRC/src/OpenFOAM" ]; then
   echo "build_solver: unpacking the library headers and the interFoam sources"
   rm -rf "$SRC" && mkdir -p "$SRC"
-  tar -xjf "$OUT"/download/openfoam_1912.*.orig.tar.bz2 -C "$SRC" --strip-components=1 \
+  tar -xjf "$TARBALL" -C "$SRC" --strip-components=1 \
     --wildcards '*/src/*' '*/applications/solvers/multiphase/interFoam/*' \
     '*/applications/solvers/multiphase/VoF/*'
   # The headers of each library are gathered in its lnInclude folder (what wmake would do).

@@ -3,6 +3,12 @@
 They run floatfoam's rebuilt interFoam (scripts/build_solver.sh, built by `make setup`).
 """
 
+import os
+import signal
+import subprocess
+import sys
+import time
+
 import numpy as np
 import pytest
 
@@ -10,7 +16,7 @@ from floatfoam.case import load_case
 from floatfoam.decay import analyse_decay, decay_dict
 from floatfoam.foam.driver import run_case
 from floatfoam.foam.postproc import max_speed
-from floatfoam.foam.runner import RunError
+from floatfoam.foam.runner import RunError, step_done
 from floatfoam.motioncsv import dof_series, read_motion
 from floatfoam.theory import theory_summary
 
@@ -73,3 +79,41 @@ def test_divergence_detector_stops_a_broken_run(tmp_path):
     assert "diverged" in message or "stopped" in message
     log = (tmp_path / "cylinder_heave" / "coarse" / "log.interFoam").read_text()
     assert log.count("\nTime = ") < 2000  # stopped early, not at the end time
+
+
+RUN_IN_CHILD = """
+import sys
+from pathlib import Path
+from floatfoam.case import load_case
+from floatfoam.foam.driver import run_case
+case = load_case("cylinder_heave", ["run.end_time=0.5"])
+run_case(case, "coarse", 1, build_dir=Path(sys.argv[1]))
+"""
+
+
+def test_interrupted_run_resumes(tmp_path):
+    """Kill a run (driver and solver) after it wrote t = 0.2 s; the same command resumes from
+    the last written time and the motion series stays continuous."""
+    run_dir = tmp_path / "cylinder_heave" / "coarse"
+    child = subprocess.Popen([sys.executable, "-c", RUN_IN_CHILD, str(tmp_path)],
+                             start_new_session=True, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 300
+    while not (run_dir / "0.2" / "U").exists():
+        assert child.poll() is None and time.monotonic() < deadline
+        time.sleep(0.2)
+    time.sleep(1.0)  # let the solver finish writing 0.2
+    os.killpg(child.pid, signal.SIGKILL)
+    child.wait()
+    assert not step_done(run_dir, "finished")
+
+    result = run_case(load_case("cylinder_heave", ["run.end_time=0.5"]), "coarse", 1,
+                      build_dir=tmp_path)
+    assert result.resumed
+    log = (run_dir / "log.interFoam").read_text()
+    resumed_part = log.split("floatfoam: resumed")[1]
+    first = next(line for line in resumed_part.splitlines() if line.startswith("Time = "))
+    assert float(first.split("=")[1]) > 0.19  # restarted from the written 0.2 s, not from 0
+    t = read_motion(result.motion_csv)["time"]
+    assert t[0] < 1e-3 and t[-1] == pytest.approx(0.5, abs=1e-6)
+    assert np.all(np.diff(t) > 0) and np.diff(t).max() < 0.01  # no overlap, no gap
