@@ -12,7 +12,6 @@ import platform
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 from floatfoam.case import ROOT, load_case
 from floatfoam.foam.driver import run_case

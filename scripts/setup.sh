@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 # wheels load, python3-venv for the venv, shellcheck for the lint, g++ and bzip2 to rebuild
 # interFoam from Debian's source package (scripts/build_solver.sh).
 APT_PACKAGES="openfoam openmpi-bin libglu1-mesa libgl1 libxcursor1 libxft2 libxinerama1
-libgomp1 libegl1 libgl1-mesa-dri python3-venv shellcheck g++ bzip2"
+libgomp1 libegl1 libgl1-mesa-dri python3-venv shellcheck g++ bzip2 dpkg-dev"
 
 missing=""
 for pkg in $APT_PACKAGES; do

@@ -67,8 +67,12 @@ def excited_dofs(case, reference: dict | None = None) -> list[str]:
 
 
 def cfd_runs(case_name: str, build_dir: str | Path) -> list[tuple[str, Path]]:
-    """(level, motion.csv) of every run of the case under ``build_dir``, coarse to fine."""
-    found = {p.parent.name: p for p in Path(build_dir, case_name).glob("*/motion.csv")}
+    """(level, motion.csv) of every finished run of the case under ``build_dir``, coarse to
+    fine: a level folder whose driver marked it finished (unfinished, diverged and moved-aside
+    ``<level>.old-<date>`` runs are left out)."""
+    found = {p.parent.name: p for p in Path(build_dir, case_name).glob("*/motion.csv")
+             if p.parent.name in LEVEL_ORDER
+             and (p.parent / ".floatfoam" / "finished.done").exists()}
 
     def order(level):
         return (LEVEL_ORDER.index(level) if level in LEVEL_ORDER else len(LEVEL_ORDER), level)

@@ -44,6 +44,9 @@ def print_summary(case, result) -> None:
     from floatfoam.theory import theory_summary
 
     theory = theory_summary(case)
+    if not result.motion_csv.exists():  # a body held still (run.static_body) has no motion
+        print(f"no motion series (the body is held still); run: {result.run_dir}")
+        return
     print(f"motion series: {result.motion_csv}")
     t, z = dof_series(read_motion(result.motion_csv), "heave")
     print(f"{'time (s)':>9} {'z of G (m)':>12}")

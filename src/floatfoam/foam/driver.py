@@ -17,7 +17,7 @@ from pathlib import Path
 from floatfoam.case import ROOT, Case
 from floatfoam.errors import InputError
 from floatfoam.foam import runner
-from floatfoam.foam.render import render
+from floatfoam.foam.render import COMMON, check_settings, render, setting
 
 SOLVER = ROOT / "build" / "solver" / "bin" / "interFoam"
 
@@ -36,8 +36,15 @@ def run_dir_for(case: Case, level: str, build_dir: Path | None = None) -> Path:
 
 
 def settings_digest(case: Case, level: str) -> str:
-    blob = json.dumps({"case": case.raw, "level": level}, sort_keys=True, default=str)
-    return hashlib.sha256(blob.encode()).hexdigest()[:16]
+    """Hash of what a run depends on: the case, the level, the shared dictionaries and the
+    solver binary."""
+    digest = hashlib.sha256(json.dumps({"case": case.raw, "level": level}, sort_keys=True,
+                                       default=str).encode())
+    for path in sorted(COMMON.rglob("*")):
+        if path.is_file():
+            digest.update(path.read_bytes())
+    digest.update(str(solver_path(case)).encode())
+    return digest.hexdigest()[:16]
 
 
 def solver_path(case: Case) -> Path:
@@ -57,7 +64,7 @@ def prepare(case: Case, level: str, np_: int, force: bool,
     digest = settings_digest(case, level)
     stamp = run_dir / runner.MARKERS / "settings"
     if run_dir.exists():
-        old = stamp.read_text().split() if stamp.exists() else ["?", "?"]
+        old = (stamp.read_text().split() if stamp.exists() else []) + ["?", "?"]
         finished = runner.step_done(run_dir, "finished")
         same = old[0] == digest and old[1] == str(np_)
         if force:
@@ -83,6 +90,7 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     if np_ < 1:
         raise InputError(f"--np {np_}: valid is a whole number ≥ 1")
     solver = solver_path(case)
+    check_settings(case, level)  # bad input fails here, before anything is moved or written
     run_dir, resumed, finished = prepare(case, level, np_, force, build_dir)
     motion = run_dir / "motion.csv"
     info_file = run_dir / runner.MARKERS / "info.json"
@@ -108,8 +116,8 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     print(f"[{label}] {info['cells']} cells, {np_} rank(s), {info['end_time']:g} s to simulate; "
           f"log: {run_dir / 'log.interFoam'}")
     limits = runner.Limits(
-        max_courant=float(case.raw.get("run", {}).get("divergence_courant", 20.0)),
-        max_body_speed=float(case.raw.get("run", {}).get("divergence_body_speed", 10.0)))
+        max_courant=setting(case, "run", "divergence_courant", 20.0),
+        max_body_speed=setting(case, "run", "divergence_body_speed", 10.0))
     runner.run_solver(run_dir, [str(solver)], end_time=info["end_time"], np_=np_,
                       motion_csv=motion, limits=limits, label=label,
                       log_name="interFoam")

@@ -26,19 +26,25 @@ LEVELS = ("coarse", "medium", "fine")
 PATCHES = ("body", "walls", "atmosphere", "frontBack")
 
 
-def setting(case: Case, table: str, key: str, default=None):
-    """A value of a case table, or ``default``; missing without a default is an error."""
+def setting(case: Case, table: str, key: str, default=None, *, minimum: float = 0.0,
+            integer: bool = False) -> float:
+    """A number of a case table (``default`` when absent), checked to be > ``minimum``; a
+    missing value without a default, or a bad one, is an InputError naming the key."""
     value = case.raw.get(table, {}).get(key, default)
     if value is None:
         raise InputError(f"{table}.{key} is missing; the CFD case needs it")
-    return value
+    ok = isinstance(value, (int, float)) and not isinstance(value, bool)
+    if not ok or not math.isfinite(value) or value <= minimum or (integer and value != int(value)):
+        kind = "a whole number" if integer else "a number"
+        raise InputError(f"{table}.{key} = {value!r}: valid is {kind} > {minimum:g}")
+    return int(value) if integer else float(value)
 
 
 def level_factor(case: Case, level: str) -> float:
     """Cell-count multiplier of a mesh level: r⁰, r¹, r² for coarse, medium, fine."""
     if level not in LEVELS:
         raise InputError(f"--level {level!r}: valid levels are {', '.join(LEVELS)}")
-    ratio = float(setting(case, "mesh", "refinement_ratio", math.sqrt(2.0)))
+    ratio = setting(case, "mesh", "refinement_ratio", math.sqrt(2.0), minimum=1.0)
     return ratio ** LEVELS.index(level)
 
 
@@ -59,20 +65,39 @@ def ogrid_for(case: Case, level: str) -> OGrid:
     if not (isinstance(body, EllipticCylinder) and body.b == body.c):
         raise InputError(f"body.shape of case {case.name!r}: the CFD mesh is available for "
                          "circular_cylinder only so far")
-    depth = case.depth if math.isfinite(case.depth) else float(setting(case, "domain", "depth"))
-    m = case.raw.get("mesh", {})
-    return OGrid(
+    depth = case.depth if math.isfinite(case.depth) else setting(case, "domain", "depth")
+
+    def cells(key, default):
+        return setting(case, "mesh", key, default, integer=True)
+
+    grid = OGrid(
         radius=body.b, centre_z=release_state(case)["centre_z"],
-        half_length=float(setting(case, "domain", "half_length")), depth=depth,
-        air_height=float(setting(case, "domain", "air_height")),
-        thickness=float(setting(case, "domain", "thickness")),
-        square=float(setting(case, "mesh", "square_half_size")),
-        cells_side=int(m.get("cells_side", 40)), cells_radial=int(m.get("cells_radial", 16)),
-        radial_grading=float(m.get("radial_grading", 2.0)),
-        cells_horizontal=int(m.get("cells_horizontal", 40)),
-        cells_below=int(m.get("cells_below", 30)), cells_above=int(m.get("cells_above", 16)),
+        half_length=setting(case, "domain", "half_length"), depth=depth,
+        air_height=setting(case, "domain", "air_height"),
+        thickness=setting(case, "domain", "thickness"),
+        square=setting(case, "mesh", "square_half_size"),
+        cells_side=cells("cells_side", 40), cells_radial=cells("cells_radial", 16),
+        radial_grading=setting(case, "mesh", "radial_grading", 2.0),
+        cells_horizontal=cells("cells_horizontal", 40),
+        cells_below=cells("cells_below", 30), cells_above=cells("cells_above", 16),
         factor=level_factor(case, level),
     )
+    b, zc = grid.square, grid.centre_z
+    if not body.b < b < min(grid.half_length, grid.depth + zc, grid.air_height - zc):
+        raise InputError(f"mesh.square_half_size = {b:g}: valid is between the radius "
+                         f"{body.b:g} and the distance from the body to the tank's ends, bottom "
+                         "and top")
+    return grid
+
+
+def check_settings(case: Case, level: str) -> None:
+    """Every number the rendering reads, checked before anything is written."""
+    ogrid_for(case, level)
+    for key, default in (("end_time", None), ("write_interval", 0.1), ("max_courant", 0.5),
+                         ("max_delta_t", 0.005), ("acceleration_relaxation", 0.7),
+                         ("inner_distance", 1.0), ("outer_distance", 1.0),
+                         ("divergence_courant", 20.0), ("divergence_body_speed", 10.0)):
+        setting(case, "run", key, default)
 
 
 def render(case: Case, level: str, run_dir: Path, *, np_: int = 1) -> dict:
@@ -83,7 +108,7 @@ def render(case: Case, level: str, run_dir: Path, *, np_: int = 1) -> dict:
     for sub in ("system", "constant"):
         shutil.copytree(COMMON / sub, run_dir / sub, dirs_exist_ok=True)
     _write_dict(run_dir / "system" / "blockMeshDict", block_mesh_dict(grid))
-    end_time = float(setting(case, "run", "end_time"))
+    end_time = setting(case, "run", "end_time")
     _control(case, run_dir, grid, end_time)
     _fluid(case, run_dir)
     _motion(case, run_dir, grid, state)
@@ -100,11 +125,11 @@ def render(case: Case, level: str, run_dir: Path, *, np_: int = 1) -> dict:
 def _control(case: Case, run_dir: Path, grid: OGrid, end_time: float) -> None:
     control = FoamFile(run_dir / "system" / "controlDict")
     control["endTime"] = end_time
-    control["writeInterval"] = float(setting(case, "run", "write_interval", 0.1))
-    max_co = float(setting(case, "run", "max_courant", 0.5))
+    control["writeInterval"] = setting(case, "run", "write_interval", 0.1)
+    max_co = setting(case, "run", "max_courant", 0.5)
     control["maxCo"] = max_co
     control["maxAlphaCo"] = max_co
-    control["maxDeltaT"] = float(setting(case, "run", "max_delta_t", 0.005)) / grid.factor
+    control["maxDeltaT"] = setting(case, "run", "max_delta_t", 0.005) / grid.factor
     if case.raw.get("run", {}).get("static_body", False):
         pimple = FoamFile(run_dir / "system" / "fvSolution")
         pimple["PIMPLE"]["correctPhi"] = False
@@ -151,14 +176,14 @@ def _motion(case: Case, run_dir: Path, grid: OGrid, state: dict) -> None:
         return
     coeffs = {
         "patches": ["body"],
-        "innerDistance": float(run.get("inner_distance", 0.3 * grid.square)),
-        "outerDistance": float(run.get("outer_distance", 1.6 * grid.square)),
+        "innerDistance": setting(case, "run", "inner_distance", 0.3 * grid.square),
+        "outerDistance": setting(case, "run", "outer_distance", 1.6 * grid.square),
         "centreOfMass": cog,
         "centreOfRotation": cog,
         "mass": mass,
         "momentOfInertia": inertia,
         "report": True,
-        "accelerationRelaxation": float(run.get("acceleration_relaxation", 0.7)),
+        "accelerationRelaxation": setting(case, "run", "acceleration_relaxation", 0.7),
         "solver": {"type": "Newmark"},
         "constraints": constraints,
     }

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import math
 import os
-import shutil
 import subprocess
 import sys
 import time
@@ -214,6 +213,10 @@ class MotionWriter:
 
 def move_aside(run_dir: Path) -> Path:
     """Rename a run directory to ``<name>.old-<timestamp>`` (nothing is deleted)."""
-    target = run_dir.with_name(f"{run_dir.name}.old-{time.strftime('%Y%m%d-%H%M%S')}")
-    shutil.move(str(run_dir), target)
+    stem = f"{run_dir.name}.old-{time.strftime('%Y%m%d-%H%M%S')}"
+    target, n = run_dir.with_name(stem), 1
+    while target.exists():
+        n += 1
+        target = run_dir.with_name(f"{stem}-{n}")
+    run_dir.rename(target)
     return target

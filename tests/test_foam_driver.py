@@ -1,0 +1,107 @@
+"""The run driver without a solver run: log parsing (on a real interFoam log excerpt), the
+motion CSV on resume, divergence checks, refuse/resume/force, and bad [run] input."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from floatfoam.case import load_case
+from floatfoam.cli import main
+from floatfoam.errors import InputError
+from floatfoam.foam import driver, runner
+from floatfoam.foam.logwatch import LogWatcher, Step
+
+EXCERPT = Path(__file__).parent / "data" / "log.interFoam.excerpt"
+
+
+def test_log_excerpt_parses_steps_and_body_state():
+    watcher = LogWatcher()
+    text = EXCERPT.read_text()
+    steps = watcher.feed(text[:1000]) + watcher.feed(text[1000:]) + watcher.close()
+    assert [s.time for s in steps] == pytest.approx([0.355, 0.36, 0.365])
+    first = steps[0]
+    assert first.courant_max == pytest.approx(0.3621038547)
+    assert first.delta_t == pytest.approx(0.005)
+    # the last of the three outer-corrector reports of the step is kept
+    assert first.centre_of_mass[2] == pytest.approx(-0.01524365457)
+    assert first.velocity[2] == pytest.approx(0.03941862615)
+    row = first.motion_row()
+    assert len(row) == 13 and row[4:7] == pytest.approx([0.0, 0.0, 0.0])  # no rotation
+    assert watcher.fatal is None
+
+
+def test_fatal_lines_are_caught_but_not_the_fpe_banner():
+    watcher = LogWatcher()
+    watcher.feed("trapFpe: Floating point exception trapping enabled (FOAM_SIGFPE).\n")
+    assert watcher.fatal is None
+    watcher.feed("#1  Foam::sigFpe::sigHandler(int) at ??:?\n")
+    assert "sigFpe" in watcher.fatal
+
+
+def test_divergence_checks():
+    limits = runner.Limits(max_courant=20.0, max_body_speed=10.0)
+    ok = Step(0.1, 0.4, 1e-3, np.zeros(3), np.eye(3), np.array([0.0, 0.0, 0.3]), np.zeros(3))
+    assert runner.diverged([ok], limits) is None
+    assert "Courant" in runner.diverged([Step(0.1, 45.0)], limits)
+    assert "nan" in runner.diverged([Step(0.1, float("nan"))], limits).lower()
+    fast = Step(0.1, 0.4, velocity=np.array([0.0, 0.0, 31.9]))
+    assert "body speed" in runner.diverged([fast], limits)
+
+
+def test_motion_writer_replaces_rows_after_restart(tmp_path):
+    path = tmp_path / "motion.csv"
+
+    def step(t):
+        return Step(t, 0.1, 1e-3, np.array([0.0, 0.0, t]), np.eye(3), np.zeros(3), np.zeros(3))
+
+    runner.MotionWriter(path).append([step(t) for t in (0.1, 0.2, 0.3)])
+    runner.MotionWriter(path).append([step(t) for t in (0.2, 0.25)])  # resumed from 0.2
+    times = np.loadtxt(path, delimiter=",", skiprows=1)[:, 0]
+    assert times.tolist() == [0.1, 0.2, 0.25]
+
+
+def test_progress_line():
+    line = runner.progress_line("c/coarse", Step(1.6, 0.3), 0.0, 3.2, 60.0)
+    assert "t = 1.6/3.2 s (50.0 %)" in line and "ETA 1:00" in line and "Co 0.3" in line
+
+
+@pytest.fixture
+def case():
+    # Debian's interFoam exists on every machine with the apt package; nothing is run here.
+    return load_case("cylinder_heave", ['run.solver="/usr/bin/interFoam"'])
+
+
+def test_prepare_refuses_resumes_and_forces(tmp_path, case):
+    run_dir, resumed, finished = driver.prepare(case, "coarse", 1, False, tmp_path)
+    assert not resumed and not finished
+    assert driver.prepare(case, "coarse", 1, False, tmp_path)[1]  # unfinished: resume
+    with pytest.raises(InputError, match="--force"):
+        driver.prepare(case, "coarse", 2, False, tmp_path)  # other --np
+    runner.mark_done(run_dir, "finished")
+    assert driver.prepare(case, "coarse", 1, False, tmp_path)[2]  # finished: reuse, no run
+    other = load_case("cylinder_heave", ['run.solver="/usr/bin/interFoam"', "run.end_time=2.0"])
+    with pytest.raises(InputError, match="finished run"):
+        driver.prepare(other, "coarse", 1, False, tmp_path)
+    driver.prepare(other, "coarse", 1, True, tmp_path)  # --force moves the old run aside
+    driver.prepare(other, "coarse", 1, True, tmp_path)  # twice in the same second
+    moved = sorted(p.name for p in (tmp_path / "cylinder_heave").iterdir())
+    assert len(moved) == 3 and moved[0] == "coarse"
+    assert all(name.startswith("coarse.old-") for name in moved[1:])
+
+
+@pytest.mark.parametrize("setting, key", [("run.end_time=-1", "run.end_time"),
+                                          ("run.end_time=\"abc\"", "run.end_time"),
+                                          ("mesh.cells_side=2.5", "mesh.cells_side"),
+                                          ("mesh.refinement_ratio=0", "mesh.refinement_ratio"),
+                                          ("domain.thickness=0", "domain.thickness"),
+                                          ("mesh.square_half_size=0.05", "mesh.square_half_size")])
+def test_bad_run_input_exit_2_before_anything_is_written(capsys, monkeypatch, tmp_path,
+                                                         setting, key):
+    monkeypatch.setattr(driver, "ROOT", tmp_path)
+    args = ["run", "cylinder_heave", "--level", "medium", "--set", setting, "--set",
+            'run.solver="/usr/bin/interFoam"']
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and key in err and "valid" in err
+    assert not (tmp_path / "build").exists()
