@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from floatfoam.compare import (
+    cfd_runs,
     compare_case,
     comparison_markdown,
     excited_dofs,
@@ -24,6 +25,7 @@ from floatfoam.compare import (
     write_comparison,
 )
 from floatfoam.errors import InputError
+from floatfoam.foam.runner import mark_done
 from floatfoam.motioncsv import write_motion
 
 PERIOD, ZETA = 0.63, 0.15  # synthetic "CFD" record: damped period (s) and damping ratio
@@ -67,7 +69,10 @@ def no_potential(monkeypatch):
 
 
 def write_run(build, case, level, t, **columns):
-    return write_motion(Path(build, case, level, "motion.csv"), t, **columns)
+    """A finished run as the driver leaves it: motion.csv and the finished marker."""
+    path = write_motion(Path(build, case, level, "motion.csv"), t, **columns)
+    mark_done(path.parent, "finished")
+    return path
 
 
 def rows_by_source(comparison, dof="heave"):
@@ -180,3 +185,11 @@ def test_excited_dofs_from_release_and_reference(tmp_path):
     case = fake_case(tmp_path, release={"heave": 0.01, "heel": 0.0, "trim": 3.0},
                      reference={"roll_damping_ratio": 0.05})
     assert excited_dofs(case) == ["heave", "roll", "pitch"]
+
+
+def test_only_finished_runs_are_compared(tmp_path):
+    t = np.linspace(0.0, 3.0, 300)
+    write_run(tmp_path, "cyl", "coarse", t, z=np.cos(t))
+    write_motion(Path(tmp_path, "cyl", "medium", "motion.csv"), t, z=np.cos(t))  # unfinished
+    write_run(tmp_path, "cyl", "coarse.old-20261122-040000", t, z=np.cos(t))  # moved aside
+    assert [level for level, _ in cfd_runs("cyl", tmp_path)] == ["coarse"]

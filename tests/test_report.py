@@ -19,6 +19,7 @@ import pytest
 
 from floatfoam.commands import report as report_command
 from floatfoam.errors import InputError
+from floatfoam.foam.runner import mark_done
 from floatfoam.motioncsv import write_motion
 from floatfoam.report import build_report, case_folders
 
@@ -39,6 +40,7 @@ def make_tree(tmp_path):
         (cases / name / "case.toml").write_text("# stand-in\n")
     t = np.arange(0.0, 3.0, 2e-3)
     write_motion(build / "cyl" / "coarse" / "motion.csv", t, z=synthetic_decay(t))
+    mark_done(build / "cyl" / "coarse", "finished")
     (build / "cyl" / "notarun").mkdir()  # a folder without motion.csv is not a run
     return cases, build
 
@@ -150,6 +152,7 @@ def test_report_with_real_theory(tmp_path):
     (cases / "cyl" / "case.toml").write_text(CASE_TOML)
     t = np.arange(0.0, 3.0, 2e-3)
     write_motion(build / "cyl" / "medium" / "motion.csv", t, z=synthetic_decay(t))
+    mark_done(build / "cyl" / "medium", "finished")
     md = build_report(cases_dir=cases, build_dir=build,
                       include_potential=False).with_suffix(".md").read_text()
     assert "## cyl: Half-immersed cylinder" in md
