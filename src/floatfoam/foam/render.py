@@ -19,10 +19,10 @@ from floatfoam.case import CASES_DIR, Case
 from floatfoam.errors import InputError
 from floatfoam.foam.ogrid import OGrid, block_mesh_dict
 from floatfoam.geometry import rotation
+from floatfoam.meshing.levels import LEVELS
 from floatfoam.theory import equilibrium
 
 COMMON = CASES_DIR / "_common"
-LEVELS = ("coarse", "medium", "fine")
 PATCHES = ("body", "walls", "atmosphere", "frontBack")
 
 

@@ -8,10 +8,11 @@ and makes them all ``patch``; :func:`set_patch_types` gives them their OpenFOAM 
 
 from __future__ import annotations
 
-import os
 import re
 import subprocess
 from pathlib import Path
+
+from floatfoam.foam.runner import foam_env
 
 PATCH_TYPES = {  # physical group → OpenFOAM patch type
     "body": "wall",
@@ -34,7 +35,6 @@ _SYSTEM = {
 }
 
 
-FOAM_ENV = {"WM_PROJECT_DIR": "/usr/share/openfoam"}  # Debian's OpenFOAM v1912 needs only this
 
 
 class MeshCheckError(RuntimeError):
@@ -121,7 +121,7 @@ def _run(command: list[str], case_dir: Path, name: str, check: bool = True) -> P
     log = case_dir / f"log.{name}"
     with open(log, "w") as fh:
         done = subprocess.run(command, stdout=fh, stderr=subprocess.STDOUT,
-                              env={**os.environ, **FOAM_ENV}, check=False)
+                              env=foam_env(), check=False)
     if check and done.returncode != 0:
         raise MeshCheckError(f"{name} failed (exit {done.returncode}); see {log}")
     return log
