@@ -90,10 +90,7 @@ def _gmsh_mesh(vertices: np.ndarray, faces: np.ndarray, size: float):
         node_tags = gmsh.model.mesh.getElementsByType(2)[1]
     finally:
         gmsh.finalize()
-    index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
-    index[tags.astype(np.int64)] = np.arange(len(tags))
-    new_vertices = coords.reshape(-1, 3)
-    new_faces = index[node_tags.astype(np.int64)].reshape(-1, 3)
+    new_vertices, new_faces = _triangles(tags, coords, node_tags)
     used = np.unique(new_faces)
     renumber = np.zeros(len(new_vertices), dtype=np.int64)
     renumber[used] = np.arange(len(used))
@@ -242,11 +239,17 @@ def waterplane_lid(vertices: np.ndarray, faces: np.ndarray, planes: tuple[str, .
         element_tags = gmsh.model.mesh.getElementsByType(2)[1]
     finally:
         gmsh.finalize()
+    lid_vertices, lid_faces = _triangles(node_tags, coords, element_tags)
+    lid_vertices[:, 2] = 0.0
+    return lid_vertices, lid_faces
+
+
+def _triangles(node_tags, coords, element_nodes):
+    """Vertices (N, 3) and 0-based triangles (M, 3) from gmsh's node tags and the node tags of
+    its 3-node triangles."""
     index = np.zeros(int(node_tags.max()) + 1, dtype=np.int64)
     index[node_tags.astype(np.int64)] = np.arange(len(node_tags))
-    lid_vertices = coords.reshape(-1, 3)
-    lid_vertices[:, 2] = 0.0
-    return lid_vertices, index[element_tags.astype(np.int64)].reshape(-1, 3)
+    return coords.reshape(-1, 3), index[element_nodes.astype(np.int64)].reshape(-1, 3)
 
 
 def wetted_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
