@@ -29,7 +29,7 @@ if [ ! -f "$TARBALL" ]; then
     apt-get update -qq
   fi
   echo "build_solver: downloading Debian's openfoam source package"
-  (cd "$OUT/download" && apt-get source --download-only -qq openfoam=1912.200626-1)
+  (cd "$OUT/download" && apt-get source --download-only -qq -o APT::Sandbox::User=root openfoam=1912.200626-1)
 fi
 
 SRC=$OUT/source
