@@ -23,8 +23,8 @@ ROOT = Path(__file__).resolve().parents[1]
 CHILD = """
 import json, time
 from floatfoam.case import load_case
-from floatfoam.potential import radiation_coefficients
-from floatfoam.theory import equilibrium
+from floatfoam.potential.radiation import radiation_coefficients
+from floatfoam.hydrostatics.theory import equilibrium
 case = load_case({name!r})
 eq = equilibrium(case)
 start = time.perf_counter()

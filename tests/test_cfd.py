@@ -12,13 +12,13 @@ import time
 import numpy as np
 import pytest
 
+from floatfoam.analysis.decay import analyse_decay, decay_dict
 from floatfoam.case import load_case
-from floatfoam.decay import analyse_decay, decay_dict
 from floatfoam.foam.driver import run_case
 from floatfoam.foam.postproc import max_speed
 from floatfoam.foam.runner import RunError, step_done
-from floatfoam.motioncsv import dof_series, read_motion
-from floatfoam.theory import theory_summary
+from floatfoam.hydrostatics.theory import theory_summary
+from floatfoam.motion import dof_series, read_motion
 
 pytestmark = pytest.mark.openfoam
 

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from floatfoam.bodies import Box, ConicCylinder, Ellipsoid, EllipticCylinder
-from floatfoam.hydrostatics import immersed
+from floatfoam.bodies.shapes import Box, ConicCylinder, Ellipsoid, EllipticCylinder
+from floatfoam.hydrostatics.immersion import immersed
 
 A = 0.0762
 

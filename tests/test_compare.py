@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from floatfoam.compare import (
+from floatfoam.analysis.compare import (
     cfd_runs,
     compare_case,
     comparison_markdown,
@@ -26,7 +26,7 @@ from floatfoam.compare import (
 )
 from floatfoam.errors import InputError
 from floatfoam.foam.runner import mark_done
-from floatfoam.motioncsv import write_motion
+from floatfoam.motion import write_motion
 
 PERIOD, ZETA = 0.63, 0.15  # synthetic "CFD" record: damped period (s) and damping ratio
 THEORY_PERIOD = 0.49  # s, stand-in for the exact linear theory (undamped)
@@ -58,14 +58,14 @@ REFERENCE = {"heave_period": {"value": 0.60, "uncertainty": 0.01, "source": "Ito
 
 @pytest.fixture
 def potential(monkeypatch):
-    module = types.ModuleType("floatfoam.potential")
+    module = types.ModuleType("floatfoam.potential.radiation")
     module.potential_summary = lambda case: {"heave_period": 0.62, "heave_damping_ratio": 0.10}
-    monkeypatch.setitem(sys.modules, "floatfoam.potential", module)
+    monkeypatch.setitem(sys.modules, "floatfoam.potential.radiation", module)
 
 
 @pytest.fixture
 def no_potential(monkeypatch):
-    monkeypatch.setitem(sys.modules, "floatfoam.potential", None)  # import raises ImportError
+    monkeypatch.setitem(sys.modules, "floatfoam.potential.radiation", None)  # import raises ImportError
 
 
 def write_run(build, case, level, t, **columns):

@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from floatfoam.commands import analyse as analyse_command
-from floatfoam.decay import analyse_decay, decay_dict, log_decrement_damping
+from floatfoam.analysis.decay import analyse_decay, decay_dict, log_decrement_damping
+from floatfoam.cli import analyse as analyse_command
 from floatfoam.errors import InputError
-from floatfoam.motioncsv import write_motion
+from floatfoam.motion import write_motion
 
 PERIOD = 0.63  # s, damped period of Ito's half-immersed cylinder in heave
 ZETA = 0.15  # strongly damped: only 3–4 usable cycles

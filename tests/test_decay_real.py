@@ -4,11 +4,11 @@ from pathlib import Path
 
 import pytest
 
+from floatfoam.analysis.decay import analyse_decay
 from floatfoam.case import load_case
 from floatfoam.cli import main
-from floatfoam.decay import analyse_decay
-from floatfoam.motioncsv import dof_series, read_motion
-from floatfoam.potential import potential_summary
+from floatfoam.motion import dof_series, read_motion
+from floatfoam.potential.radiation import potential_summary
 
 DATA = Path(__file__).parent / "data" / "cylinder_heave_coarse_motion.csv"
 

@@ -1,4 +1,4 @@
-"""Le Barbier's bodies (floatfoam.memoir) against independent hand derivations.
+"""Le Barbier's bodies (floatfoam.hydrostatics.memoir) against independent hand derivations.
 
 The printed formulas could not be recovered (docs/memoir.md section 0), so memoir.py evaluates
 the memoir's method, reconstructed. These tests check it at points where the answer can be
@@ -12,8 +12,8 @@ import math
 import pytest
 from scipy.integrate import quad
 
-from floatfoam import memoir
 from floatfoam.errors import InputError
+from floatfoam.hydrostatics import memoir
 
 G = 9.81
 CLOSED = 1e-12

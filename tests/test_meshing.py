@@ -7,14 +7,14 @@ import shutil
 import numpy as np
 import pytest
 
+from floatfoam.bodies.geometry import mesh_volume, open_edges
+from floatfoam.bodies.surfaces import stl_body
 from floatfoam.case import CASES_DIR, load_case
 from floatfoam.errors import InputError
-from floatfoam.geometry import mesh_volume, open_edges
 from floatfoam.meshing import body_surface, levels
 from floatfoam.meshing.domains import build_domain
 from floatfoam.meshing.planar import progression
 from floatfoam.meshing.volume_report import discrete_volume_report
-from floatfoam.surfaces import stl_body
 
 CASES = sorted(p.parent.name for p in CASES_DIR.glob("*/case.toml")
                if not p.parent.name.startswith("_"))
@@ -68,7 +68,7 @@ def test_discrete_volume_report(name, cases):
     assert report["immersed_exact"] == pytest.approx(case.displacement, rel=1e-9)
     assert abs(report["immersed_error"]) < volume_tolerance("coarse")
     # the equilibrium shift is the volume deficit spread over the waterplane (first order)
-    from floatfoam.theory import equilibrium
+    from floatfoam.hydrostatics.theory import equilibrium
 
     area = equilibrium(case).immersed.waterplane_area
     deficit = report["immersed_discrete"] - report["immersed_exact"]
@@ -170,7 +170,7 @@ def test_bad_inputs(cases):
 
 @pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")
 def test_gmsh_to_foam_and_check_mesh(cases, tmp_path):
-    from floatfoam.meshing.foamcheck import convert_and_check
+    from floatfoam.foam.meshcheck import convert_and_check
 
     result = build_domain(cases["cylinder_heave"], "coarse", "2d", path=tmp_path / "c.msh")
     quality = convert_and_check(tmp_path / "c.msh", tmp_path / "foam")

@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from floatfoam.bodies import Box, ConicCylinder, Ellipsoid, EllipticCylinder, MeshBody
-from floatfoam.geometry import icosphere
-from floatfoam.hydrostatics import immersed, mesh_immersed
-from floatfoam.surfaces import implicit_body, stl_body
+from floatfoam.bodies.geometry import icosphere
+from floatfoam.bodies.shapes import Box, ConicCylinder, Ellipsoid, EllipticCylinder, MeshBody
+from floatfoam.bodies.surfaces import implicit_body, stl_body
+from floatfoam.hydrostatics.immersion import immersed, mesh_immersed
 
 TOL = 5e-3  # the 0.5 % at the default resolution
 

@@ -8,18 +8,19 @@ import time
 
 import numpy as np
 import pytest
+from ursell_reference import ursell_heave
 
-from floatfoam import bem_mesh, section_bem
-from floatfoam.bodies import EllipticCylinder
+from floatfoam.bodies.shapes import EllipticCylinder
 from floatfoam.case import load_case
-from floatfoam.potential import (
+from floatfoam.hydrostatics.theory import equilibrium
+from floatfoam.potential import bem_mesh
+from floatfoam.potential import sections as section_bem
+from floatfoam.potential.radiation import (
     capytaine_coefficients,
     potential_summary,
     radiation_coefficients,
 )
-from floatfoam.resonance import damping_ratio, natural_frequency
-from floatfoam.theory import equilibrium
-from floatfoam.ursell import ursell_heave
+from floatfoam.potential.resonance import damping_ratio, natural_frequency
 
 # Hulme (1982, J. Fluid Mech. 121, 443–463), floating hemisphere in heave, infinite depth:
 # A / (ρ·2/3·πa³) and B / (ρ·2/3·πa³·ω) at ka = ω²a/g.
@@ -183,7 +184,7 @@ def test_symmetry_planes_detected_and_refused():
 
 
 def _cli(argv):
-    from floatfoam.commands import decay_model, potential
+    from floatfoam.cli import decay_model, potential
 
     parser = argparse.ArgumentParser()
     sub = parser.add_subparsers(dest="command")

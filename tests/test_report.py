@@ -17,11 +17,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from floatfoam.commands import report as report_command
+from floatfoam.analysis.report import build_report, case_folders
+from floatfoam.cli import report as report_command
 from floatfoam.errors import InputError
 from floatfoam.foam.runner import mark_done
-from floatfoam.motioncsv import write_motion
-from floatfoam.report import build_report, case_folders
+from floatfoam.motion import write_motion
 
 PERIOD, ZETA = 0.63, 0.15  # of the synthetic heave record
 
@@ -70,11 +70,11 @@ def fake_modules(monkeypatch, cases_dir):
     case_module = types.ModuleType("floatfoam.case")
     case_module.load_case, case_module.CASES_DIR = load_case, cases_dir
     case_module.ROOT = cases_dir.parent
-    theory_module = types.ModuleType("floatfoam.theory")
+    theory_module = types.ModuleType("floatfoam.hydrostatics.theory")
     theory_module.theory_summary = theory_summary
     monkeypatch.setitem(sys.modules, "floatfoam.case", case_module)
-    monkeypatch.setitem(sys.modules, "floatfoam.theory", theory_module)
-    monkeypatch.setitem(sys.modules, "floatfoam.potential", None)  # not available
+    monkeypatch.setitem(sys.modules, "floatfoam.hydrostatics.theory", theory_module)
+    monkeypatch.setitem(sys.modules, "floatfoam.potential.radiation", None)  # not available
 
 
 def test_case_folders_skip_underscore(tmp_path):

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from floatfoam.case import load_case
-from floatfoam.gz import gz_curve, righting_arm
-from floatfoam.theory import equilibrium, stiffness_matrix, theory_summary
+from floatfoam.hydrostatics.gz import gz_curve, righting_arm
+from floatfoam.hydrostatics.theory import equilibrium, stiffness_matrix, theory_summary
 
 A = 0.0762
 
@@ -111,8 +111,8 @@ def test_capsizing_body_has_zero_vanishing_angle():
 @pytest.mark.parametrize("case", ["cylinder_heave", "sphere", "ellipsoid", "elliptic_cylinder",
                                   "parabolic_cylinder"])
 def test_memoir_method_matches_exact_theory(case):
-    """floatfoam.memoir (the memoir's method, derived by hand in docs/memoir.md) and the
-    hydrostatics engine are independent derivations of the same linear theory."""
+    """floatfoam.hydrostatics.memoir (the memoir's method, derived by hand in docs/memoir.md) and
+    the hydrostatics engine are independent derivations of the same linear theory."""
     s = theory_summary(load_case(case))
     memoir = s["memoir"]
     assert memoir["source"] == "reconstructed"

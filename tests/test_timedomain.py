@@ -8,16 +8,21 @@ import math
 import numpy as np
 import pytest
 
-from floatfoam import section_bem
-from floatfoam.bodies import EllipticCylinder
+from floatfoam.bodies.geometry import rotation
+from floatfoam.bodies.shapes import EllipticCylinder
 from floatfoam.case import load_case
-from floatfoam.decay_models import decay_series
-from floatfoam.geometry import rotation
-from floatfoam.gz import righting_arm
-from floatfoam.motioncsv import MOTION_COLUMNS
-from floatfoam.rigid_body import RigidBody, nonlinear_decay
-from floatfoam.theory import equilibrium, sinkage_for_volume, stiffness_matrix, theory_summary
-from floatfoam.timedomain import (
+from floatfoam.hydrostatics.gz import righting_arm
+from floatfoam.hydrostatics.theory import (
+    equilibrium,
+    sinkage_for_volume,
+    stiffness_matrix,
+    theory_summary,
+)
+from floatfoam.motion import MOTION_COLUMNS
+from floatfoam.potential import sections as section_bem
+from floatfoam.potential.models import decay_series
+from floatfoam.potential.rigid_body import RigidBody, nonlinear_decay
+from floatfoam.potential.timedomain import (
     cummins_decay,
     energy,
     linear_decay,
@@ -154,7 +159,7 @@ def test_large_heel_changes_the_period():
 @pytest.mark.parametrize("heel_deg", [10.0, 20.0, 30.0])
 def test_nonlinear_restoring_moment_is_the_gz_curve(heel_deg):
     """At constant displacement the rigorous model's moment about G is −ρgV·GZ, with GZ from
-    floatfoam.gz and, for a circle with G a distance OG below its centre, GZ = OG sin φ
+    floatfoam.hydrostatics.gz and, for a circle with G a distance OG below its centre, GZ = OG sin φ
     exactly (B stays below the centre)."""
     og = 0.02
     case = load_case("cylinder_heave", [f"mass.cog=[0.0, 0.0, {-og}]"])
@@ -198,7 +203,7 @@ def test_negative_gm_capsizes_linear_and_nonlinear():
 
 
 def _cli(argv):
-    from floatfoam.commands import decay_model
+    from floatfoam.cli import decay_model
 
     parser = argparse.ArgumentParser()
     decay_model.register(parser.add_subparsers(dest="command"))

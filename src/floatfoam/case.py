@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam import bodies
+from floatfoam.bodies import shapes as bodies
 from floatfoam.errors import InputError
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -212,7 +212,7 @@ def make_body(cfg: dict, folder: Path) -> bodies.Body:
         return bodies.Ellipsoid([r, r, r])
     if shape == "ellipsoid":
         return bodies.Ellipsoid(_vector(cfg, "body", "semi_axes", positive=True))
-    from floatfoam import surfaces
+    from floatfoam.bodies import surfaces
 
     if shape == "implicit":
         resolution = int(cfg["body"].get("resolution", 96))

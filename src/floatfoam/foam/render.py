@@ -14,13 +14,13 @@ from pathlib import Path
 import numpy as np
 from foamlib import FoamFieldFile, FoamFile
 
-from floatfoam.bodies import EllipticCylinder
+from floatfoam.bodies.geometry import rotation
+from floatfoam.bodies.shapes import EllipticCylinder
 from floatfoam.case import CASES_DIR, Case
 from floatfoam.errors import InputError
 from floatfoam.foam.ogrid import OGrid, block_mesh_dict
-from floatfoam.geometry import rotation
+from floatfoam.hydrostatics.theory import equilibrium
 from floatfoam.meshing.levels import LEVELS
-from floatfoam.theory import equilibrium
 
 COMMON = CASES_DIR / "_common"
 PATCHES = ("body", "walls", "atmosphere", "frontBack")

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam.foam.logwatch import LogWatcher, Step
-from floatfoam.motioncsv import MOTION_COLUMNS
+from floatfoam.motion import MOTION_COLUMNS
 
 FOAM_ENV = {
     "WM_PROJECT_DIR": "/usr/share/openfoam",

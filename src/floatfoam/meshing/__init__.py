@@ -8,10 +8,10 @@
 * :mod:`~floatfoam.meshing.domain3d`: 3D domains;
 * :mod:`~floatfoam.meshing.domains`: one entry point for the domains (kind, file, body patch);
 * :mod:`~floatfoam.meshing.volume_report`: the immersed volume the discrete body really has;
-* :mod:`~floatfoam.meshing.foamcheck`: gmshToFoam + checkMesh on a written mesh;
+* :mod:`~floatfoam.foam.meshcheck`: gmshToFoam + checkMesh on a written mesh;
 * :mod:`~floatfoam.meshing.table`: the mesh-levels table (Markdown);
 * :mod:`~floatfoam.meshing.gmshio`: the gmsh session, mesh arrays, MSH 2.2 and STL output.
 
-The command line is ``floatfoam mesh body|domain|table`` (:mod:`floatfoam.commands.mesh`), or
+The command line is ``floatfoam mesh body|domain|table`` (:mod:`floatfoam.cli.mesh`), or
 the scripts in meshes/.
 """

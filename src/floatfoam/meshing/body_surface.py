@@ -16,8 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam import bodies
-from floatfoam.geometry import mesh_volume, to_earth
+from floatfoam.bodies import shapes as bodies
+from floatfoam.bodies.geometry import mesh_volume, to_earth
 from floatfoam.meshing import gmshio, sections
 from floatfoam.meshing.levels import MeshSpec, Pose
 

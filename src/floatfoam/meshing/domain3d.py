@@ -26,12 +26,12 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam import bodies
+from floatfoam.bodies import shapes as bodies
+from floatfoam.bodies.surfaces import compile_expression
 from floatfoam.errors import InputError
 from floatfoam.meshing import gmshio, sections
 from floatfoam.meshing.body_surface import place
 from floatfoam.meshing.levels import MeshSpec, Pose, Tank
-from floatfoam.surfaces import compile_expression
 
 FEATURE_ANGLE = 20.0  # degrees: sharper turns between triangles stay edges (pontoon: 25.6°)
 VERBOSITY = 1  # gmsh messages: 1 errors only; 4 to see where the time goes

@@ -10,9 +10,9 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from floatfoam.bodies.geometry import mesh_volume
 from floatfoam.errors import InputError
-from floatfoam.geometry import mesh_volume
-from floatfoam.hydrostatics import immersed, mesh_immersed, section_immersed
+from floatfoam.hydrostatics.immersion import immersed, mesh_immersed, section_immersed
 from floatfoam.meshing import body_surface, sections
 from floatfoam.meshing.domain3d import domain_3d
 from floatfoam.meshing.levels import Pose, mesh_spec, pose, tank

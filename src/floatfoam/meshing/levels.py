@@ -192,7 +192,7 @@ def pose(case: Case, which: str = "release", equilibrium=None) -> Pose:
     if which == "body":
         return Pose()
     if equilibrium is None:
-        from floatfoam.theory import equilibrium as solve
+        from floatfoam.hydrostatics.theory import equilibrium as solve
 
         equilibrium = solve(case)
     base = Pose(equilibrium.z_c, equilibrium.heel, equilibrium.trim)

@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from floatfoam import bodies
+from floatfoam.bodies import shapes as bodies
 
 
 def add_section(body, x0: float = 0.0) -> list[int]:

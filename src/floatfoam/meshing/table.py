@@ -14,7 +14,7 @@ def level_rows(case, levels=LEVELS, domains: bool = False, check: bool = False,
                kind: str = "auto", scratch: Path | None = None) -> list[dict]:
     """One row per level of ``case``: sizes, the discrete volume report and (``domains``) the
     domain's cells, with checkMesh's quality when ``check`` (gmshToFoam into ``scratch``)."""
-    from floatfoam.theory import equilibrium
+    from floatfoam.hydrostatics.theory import equilibrium
 
     eq = equilibrium(case)
     rows = []
@@ -35,7 +35,7 @@ def level_rows(case, levels=LEVELS, domains: bool = False, check: bool = False,
                        cell_types=result["cell_types"],
                        patch_immersed_error=result["body_patch"]["immersed_error"])
             if check:
-                from floatfoam.meshing.foamcheck import convert_and_check
+                from floatfoam.foam.meshcheck import convert_and_check
 
                 quality = convert_and_check(Path(result["path"]), folder / "foam")
                 row.update(max_non_orthogonality=quality["max_non_orthogonality"],

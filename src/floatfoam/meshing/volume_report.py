@@ -21,9 +21,9 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from floatfoam import bodies
-from floatfoam.geometry import mesh_volume
-from floatfoam.hydrostatics import mesh_immersed, section_immersed
+from floatfoam.bodies import shapes as bodies
+from floatfoam.bodies.geometry import mesh_volume
+from floatfoam.hydrostatics.immersion import mesh_immersed, section_immersed
 from floatfoam.meshing import body_surface, sections
 from floatfoam.meshing.levels import mesh_spec
 
@@ -41,7 +41,7 @@ def discrete_volume_report(case, level: str, equilibrium=None) -> dict:
     ``equilibrium_shift`` (m, the discrete body's z_c minus the exact one), ``release_heave``
     (m, for scale) and, for a body of revolution, ``meridian`` (the same for the wedge).
     """
-    from floatfoam.theory import equilibrium as solve
+    from floatfoam.hydrostatics.theory import equilibrium as solve
 
     eq = equilibrium or solve(case)
     spec = mesh_spec(case, level)

@@ -1,0 +1,295 @@
+"""One table of period and damping per case: memoir, linear theory, potential flow, CFD, reference.
+
+Rows, in this order, for each degree of freedom the case releases (``[release]`` heave, heel,
+trim → heave, roll, pitch) or lists a reference for:
+
+* **memoir formula**: Le Barbier's printed formula (``theory_summary(case)["memoir"]``);
+* **linear theory (exact)**: the exact hydrostatic linear theory, undamped natural period;
+* **potential flow**: added mass and radiation damping (when :mod:`floatfoam.potential.radiation` is
+  available for the case);
+* **CFD <level>**: each ``build/<case>/<level>/motion.csv``, through :func:`analyse_decay`.
+  The period is the damped period T_d of the record (what a decay test measures; the natural
+  period T_n = T_d √(1 − ζ²) is in the note) with its 95 % interval;
+* **reference**: the measured value of the case's ``[reference]`` table (value ± uncertainty).
+
+Relative differences are taken against the reference where the case has one, else against the
+exact linear theory (periods only: the theory has no damping). A CFD record that cannot be
+analysed (NaN, too short, no signal) gives a row with the reason, never a missing row.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from floatfoam.analysis.decay import DecayResult, analyse_decay
+from floatfoam.errors import InputError
+from floatfoam.motion import DOF_COLUMNS, dof_series, file_unit, read_motion
+
+DOFS = ("heave", "roll", "pitch")
+RELEASE_KEYS = {"heave": "heave", "roll": "heel", "pitch": "trim"}
+LEVEL_ORDER = ("coarse", "medium", "fine", "finer", "finest")
+CSV_FIELDS = ("case", "dof", "source", "period", "period_lo", "period_hi", "damping_ratio",
+              "damping_lo", "damping_hi", "period_rel_diff", "damping_rel_diff", "basis",
+              "note")
+
+
+@dataclass
+class CfdAnalysis:
+    """A decay analysis of one CFD run, kept for the plots."""
+
+    level: str
+    dof: str
+    time: object
+    value: object
+    result: DecayResult
+
+
+@dataclass
+class Comparison:
+    """Rows of the comparison table, notes about omitted sources, and the CFD analyses."""
+
+    case: str
+    rows: list[dict] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    analyses: list[CfdAnalysis] = field(default_factory=list)
+
+
+def excited_dofs(case, reference: dict | None = None) -> list[str]:
+    """DoFs the case releases from an offset, or has a reference period or damping for."""
+    release = getattr(case, "release", None) or case.raw.get("release", {})
+    reference = reference if reference is not None else (case.reference or {})
+    return [dof for dof in DOFS
+            if float(release.get(RELEASE_KEYS[dof], 0.0) or 0.0) != 0.0
+            or f"{dof}_period" in reference or f"{dof}_damping_ratio" in reference]
+
+
+def cfd_runs(case_name: str, build_dir: str | Path) -> list[tuple[str, Path]]:
+    """(level, motion.csv) of every finished run of the case under ``build_dir``, coarse to
+    fine: a level folder whose driver marked it finished (unfinished, diverged and moved-aside
+    ``<level>.old-<date>`` runs are left out)."""
+    found = {p.parent.name: p for p in Path(build_dir, case_name).glob("*/motion.csv")
+             if p.parent.name in LEVEL_ORDER
+             and (p.parent / ".floatfoam" / "finished.done").exists()}
+
+    def order(level):
+        return (LEVEL_ORDER.index(level) if level in LEVEL_ORDER else len(LEVEL_ORDER), level)
+
+    return [(level, found[level]) for level in sorted(found, key=order)]
+
+
+def reference_entry(reference: dict, key: str) -> tuple[float, float | None, str] | None:
+    """(value, uncertainty, source) of a ``[reference]`` entry: a table or a bare number."""
+    entry = reference.get(key)
+    if entry is None:
+        return None
+    if isinstance(entry, dict):
+        value = entry.get("value")
+        if value is None:
+            raise InputError(f"reference.{key} has no 'value'; valid is a number or a table "
+                             "with value, uncertainty, source")
+        return float(value), _optional(entry.get("uncertainty")), str(entry.get("source", ""))
+    return float(entry), None, ""
+
+
+def _optional(value):
+    return None if value is None else float(value)
+
+
+def _row(case, dof, source, period=None, period_ci=None, zeta=None, zeta_ci=None, note=""):
+    return {"case": case, "dof": dof, "source": source, "period": period,
+            "period_ci": period_ci, "damping_ratio": zeta, "damping_ci": zeta_ci,
+            "period_rel_diff": None, "damping_rel_diff": None, "basis": "", "note": note}
+
+
+def theory_equilibrium(theory: dict, dof: str) -> float | None:
+    """Equilibrium of a DoF in code units (z of G in m; heel, trim in radians)."""
+    eq = theory.get("equilibrium") or {}
+    key = {"heave": "z_G", "roll": "heel", "pitch": "trim"}[dof]
+    if eq.get(key) is None:
+        return None
+    return float(eq[key]) if dof == "heave" else math.radians(float(eq[key]))
+
+
+def analyse_run(path: Path, dof: str, **options) -> tuple[object, object, DecayResult]:
+    """Time, value (code units) and decay analysis of one DoF of a motion CSV."""
+    time, value = dof_series(read_motion(path), dof)
+    return time, value, analyse_decay(time, value, units=file_unit(dof),
+                                      name=DOF_COLUMNS[dof][0], **options)
+
+
+def _cfd_rows(case, dof, runs, theory, options) -> tuple[list[dict], list[CfdAnalysis]]:
+    rows, analyses = [], []
+    eq_theory = theory_equilibrium(theory, dof)
+    scale, unit = file_unit(dof)
+    for level, path in runs:
+        source = f"CFD {level}"
+        try:
+            time, value, result = analyse_run(path, dof, **options)
+        except InputError as err:
+            rows.append(_row(case.name, dof, source, note=f"analysis failed: {err}"))
+            continue
+        analyses.append(CfdAnalysis(level, dof, time, value, result))
+        s = result.summary()
+        note = f"T_n {s['natural_period']:.4g} s; {s['n_cycles']:.2g} cycles"
+        if eq_theory is not None:
+            offset = (float(result.fit.mean_level(result.t_first)) - eq_theory) * scale
+            note += f"; mean level {offset:+.3g} {unit} from the theory's equilibrium"
+        rows.append(_row(case.name, dof, source, s["period_mean"], s["period_ci95"],
+                         s["damping_ratio"], s["damping_ratio_ci95"], note))
+    return rows, analyses
+
+
+def _potential(case, include: bool, notes: list[str]) -> dict:
+    if not include:
+        notes.append("potential flow: not requested")
+        return {}
+    try:
+        from floatfoam.potential.radiation import potential_summary
+
+        summary = potential_summary(case) or {}
+    except (ImportError, AttributeError) as err:
+        notes.append(f"potential flow: not available ({err})")
+        return {}
+    except (InputError, NotImplementedError, RuntimeError) as err:
+        notes.append(f"potential flow: not computed for this case ({err})")
+        return {}
+    notes += [f"potential flow: {note}" for note in summary.get("notes") or []]
+    return summary
+
+
+def _theory_rows(case, dof, theory, potential):
+    rows = []
+    memoir = theory.get("memoir") or {}
+    if memoir.get(f"{dof}_period") is not None:
+        label = f"memoir ({memoir['source']})" if memoir.get("source") else "memoir formula"
+        rows.append(_row(case.name, dof, label, float(memoir[f"{dof}_period"])))
+    period = theory.get(f"{dof}_period")
+    note = "" if period is not None else f"no oscillation ({theory.get(f'verdict_{dof}', '')})"
+    rows.append(_row(case.name, dof, "linear theory (exact)", period, note=note.strip()))
+    if potential.get(f"{dof}_period") is not None:
+        method = ", ".join(f"{potential[k]}{label}" for k, label in
+                           (("method", ""), ("panels", " panels")) if potential.get(k))
+        rows.append(_row(case.name, dof, "potential flow", float(potential[f"{dof}_period"]),
+                         zeta=_optional(potential.get(f"{dof}_damping_ratio")), note=method))
+    return rows
+
+
+def _reference_row(case, dof, reference):
+    period = reference_entry(reference, f"{dof}_period")
+    zeta = reference_entry(reference, f"{dof}_damping_ratio")
+    if period is None and zeta is None:
+        return None
+
+    def interval(entry):
+        if entry is None or entry[1] is None:
+            return None
+        return [entry[0] - entry[1], entry[0] + entry[1]]
+
+    sources = sorted({e[2] for e in (period, zeta) if e is not None and e[2]})
+    return _row(case.name, dof, "reference", period[0] if period else None, interval(period),
+                zeta[0] if zeta else None, interval(zeta), "; ".join(sources))
+
+
+def _relative_differences(rows: list[dict]) -> None:
+    """Fill period_rel_diff and damping_rel_diff against the reference, else the theory."""
+    ref = next((r for r in rows if r["source"] == "reference"), None)
+    theory = next((r for r in rows if r["source"] == "linear theory (exact)"), None)
+    for key, diff_key in (("period", "period_rel_diff"), ("damping_ratio", "damping_rel_diff")):
+        base = ref if ref is not None and ref[key] is not None else None
+        if base is None and key == "period" and theory is not None and theory[key]:
+            base = theory
+        if base is None or not base[key]:
+            continue
+        for row in rows:
+            if row is not base and row[key] is not None:
+                row[diff_key] = row[key] / base[key] - 1.0
+                label = "Δ period" if key == "period" else "Δ ζ"
+                row["basis"] = "; ".join(filter(None, (row["basis"],
+                                                       f"{label} vs {base['source']}")))
+
+
+def compare_case(case, *, build_dir: str | Path, theory: dict | None = None,
+                 include_potential: bool = True, analysis_options: dict | None = None
+                 ) -> Comparison:
+    """The comparison table of one case (see the module docstring for the rows).
+
+    ``theory`` is :func:`~floatfoam.hydrostatics.theory.theory_summary` of the case
+    (computed when None);
+    ``analysis_options`` go to :func:`analyse_decay` (e.g. ``{"drift": True}``).
+    """
+    if theory is None:
+        from floatfoam.hydrostatics.theory import theory_summary
+
+        theory = theory_summary(case)
+    reference = case.reference or {}
+    comparison = Comparison(case.name)
+    potential = _potential(case, include_potential, comparison.notes)
+    runs = cfd_runs(case.name, build_dir)
+    if not runs:
+        comparison.notes.append(f"CFD: no run yet (no {Path(build_dir, case.name)}/*/motion.csv)")
+    for dof in excited_dofs(case, reference):
+        rows = _theory_rows(case, dof, theory, potential)
+        cfd_rows, analyses = _cfd_rows(case, dof, runs, theory, analysis_options or {})
+        rows += cfd_rows
+        comparison.analyses += analyses
+        ref_row = _reference_row(case, dof, reference)
+        if ref_row is not None:
+            rows.append(ref_row)
+        _relative_differences(rows)
+        comparison.rows += rows
+    return comparison
+
+
+def fmt(value, spec: str = ".4g") -> str:
+    """A number for a table; an em dash when missing."""
+    return "—" if value is None else format(value, spec)
+
+
+def _interval(ci) -> str:
+    return "" if ci is None else f"[{fmt(ci[0])}, {fmt(ci[1])}]"
+
+
+def _percent(value) -> str:
+    return "" if value is None else f"{100 * value:+.2f} %"
+
+
+TABLE_HEADER = ("DoF", "source", "period (s)", "period 95 % CI / ± uncertainty", "Δ period",
+                "damping ratio ζ", "ζ 95 % CI / ± uncertainty", "Δ ζ", "note")
+
+
+def table_rows(rows: list[dict]) -> list[list[str]]:
+    """Rows of the comparison as text cells, in the order of TABLE_HEADER."""
+    return [[r["dof"], r["source"], fmt(r["period"]), _interval(r["period_ci"]),
+             _percent(r["period_rel_diff"]), fmt(r["damping_ratio"]), _interval(r["damping_ci"]),
+             _percent(r["damping_rel_diff"]), "; ".join(x for x in (r["basis"], r["note"]) if x)]
+            for r in rows]
+
+
+def comparison_markdown(comparison: Comparison) -> str:
+    """The comparison as a Markdown table, with the notes below it."""
+    lines = ["| " + " | ".join(TABLE_HEADER) + " |", "|" + "---|" * len(TABLE_HEADER)]
+    lines += ["| " + " | ".join(cell.replace("|", "\\|") for cell in cells) + " |"
+              for cells in table_rows(comparison.rows)]
+    lines += [""] + [f"- {note}" for note in comparison.notes]
+    return "\n".join(lines) + "\n"
+
+
+def write_comparison(comparison: Comparison, out_dir: str | Path) -> tuple[Path, Path]:
+    """Write ``comparison.md`` and ``comparison.csv`` into ``out_dir``; return their paths."""
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    md_path, csv_path = out_dir / "comparison.md", out_dir / "comparison.csv"
+    md_path.write_text(f"# {comparison.case}: period and damping\n\n"
+                       + comparison_markdown(comparison))
+    with csv_path.open("w", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=CSV_FIELDS)
+        writer.writeheader()
+        for r in comparison.rows:
+            p_ci, z_ci = r["period_ci"] or (None, None), r["damping_ci"] or (None, None)
+            writer.writerow({**{k: r[k] for k in CSV_FIELDS if k in r},
+                             "period_lo": p_ci[0], "period_hi": p_ci[1],
+                             "damping_lo": z_ci[0], "damping_hi": z_ci[1]})
+    return md_path, csv_path

@@ -1,0 +1,157 @@
+"""Figures of a decay analysis (PNG, matplotlib's Agg canvas; no pyplot state).
+
+One figure per record, four panels:
+
+* the motion against the undamped linear theory, x_eq + x₀ cos(2π (t − t₀)/T) from the
+  release offset x₀, the least-squares fit, and a damped reference curve when the case has a
+  measured period (and damping);
+* the amplitude envelope: |extrema| on a log scale with the fitted exponential A e^{−ζω_n s};
+* period per cycle versus amplitude;
+* damping ratio per cycle (and per half cycle) versus amplitude.
+
+All values are drawn in file units (m, deg).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from floatfoam.analysis.decay import DecayResult, log_decrement_damping
+
+
+@dataclass
+class Overlay:
+    """What to draw next to the record (file units; None: not drawn).
+
+    theory_period : undamped period of the linear theory, s
+    equilibrium : the theory's equilibrium level (else the fitted mean is used)
+    release : release offset from equilibrium (else the first sample's offset)
+    reference_period, reference_damping, reference_source : a measured reference
+    """
+
+    theory_period: float | None = None
+    equilibrium: float | None = None
+    release: float | None = None
+    reference_period: float | None = None
+    reference_damping: float | None = None
+    reference_source: str = ""
+
+
+def free_decay_curve(time, t0: float, offset: float, period: float, zeta: float = 0.0):
+    """Release from rest: x₀ e^{−ζω_n s} (cos ω_d s + ζω_n/ω_d sin ω_d s), s = t − t₀.
+
+    ``period`` is the damped period T_d = 2π/ω_d; ζ = 0 gives the undamped cosine.
+    """
+    s = np.asarray(time, dtype=float) - t0
+    omega_d = 2 * math.pi / period
+    sigma = zeta * omega_d / math.sqrt(1 - zeta**2)
+    return offset * np.exp(-sigma * s) * (np.cos(omega_d * s) + sigma / omega_d
+                                           * np.sin(omega_d * s))
+
+
+def _time_panel(ax, time, value, result: DecayResult, overlay: Overlay, scale, unit):
+    fit = result.fit
+    mean = fit.mean_level(time) * scale
+    eq = overlay.equilibrium if overlay.equilibrium is not None else float(mean[0])
+    offset = overlay.release if overlay.release is not None else float(value[0] * scale - eq)
+    ax.plot(time, value * scale, color="C0", lw=1.6, label="record")
+    fitted = time >= fit.t0  # a record analysed from --start is fitted from there on
+    ax.plot(time[fitted], fit.evaluate(time[fitted]) * scale, color="C1", lw=1, ls="--",
+            label=f"fit: T_d = {fit.damped_period()[0]:.4g} s, ζ = {fit.zeta:.3g}")
+    if overlay.theory_period:
+        ax.plot(time, eq + free_decay_curve(time, time[0], offset, overlay.theory_period),
+                color="0.45", lw=1, ls=":",
+                label=f"linear theory, undamped: T = {overlay.theory_period:.4g} s")
+    if overlay.reference_period:
+        zeta = overlay.reference_damping or 0.0
+        label = f"reference {overlay.reference_source}".strip()
+        ax.plot(time, eq + free_decay_curve(time, time[0], offset, overlay.reference_period,
+                                            zeta),
+                color="C2", lw=1, ls="-.",
+                label=f"{label}: T = {overlay.reference_period:.4g} s, ζ = {zeta:.3g}")
+    ax.axhline(eq, color="0.7", lw=0.8)
+    if result.t_usable < result.t_last:
+        ax.axvline(result.t_usable, color="0.7", lw=0.8, ls="--")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel(f"motion ({unit})")
+    ax.legend(fontsize=7, loc="upper right")
+
+
+def _envelope_panel(ax, result: DecayResult, scale, unit):
+    t = np.array([e[0] for e in result.extrema])
+    a = np.array([e[1] for e in result.extrema]) * scale
+    if t.size:
+        ax.semilogy(t[a > 0], a[a > 0], "^", color="C0", label="maxima")
+        ax.semilogy(t[a < 0], -a[a < 0], "v", color="C3", label="|minima|")
+    grid = np.linspace(result.t_first, result.t_usable, 200)
+    ax.semilogy(grid, result.fit.envelope(grid) * scale, color="C1", lw=1,
+                label=f"fit A e^(−ζω_n t), ζ = {result.fit.zeta:.3g}")
+    if result.threshold > 0:
+        ax.axhline(result.threshold * scale, color="0.7", lw=0.8, ls=":",
+                   label="noise threshold")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel(f"amplitude ({unit})")
+    ax.legend(fontsize=7)
+
+
+def _band(ax, value, lo, hi, color, label):
+    ax.axhline(value, color=color, lw=1, label=label)
+    ax.axhspan(lo, hi, color=color, alpha=0.15, lw=0)
+
+
+def _period_panel(ax, result: DecayResult, overlay: Overlay, scale, unit):
+    ax.plot(result.crossing_amplitudes(1) * scale, result.periods(1), "o", color="C0",
+            label="zero-up-crossing")
+    ax.plot(result.crossing_amplitudes(-1) * scale, result.periods(-1), "s", color="C0",
+            mfc="none", label="zero-down-crossing")
+    ax.plot(result.cycle_decrements()[1] * scale, result.peak_periods(), "x", color="C3",
+            label="peak to peak")
+    period, half = result.fit.damped_period()
+    _band(ax, period, period - half, period + half, "C1", "fit T_d ± 95 %")
+    if overlay.theory_period:
+        ax.axhline(overlay.theory_period, color="0.45", ls=":", label="linear theory")
+    if overlay.reference_period:
+        ax.axhline(overlay.reference_period, color="C2", ls="-.", label="reference")
+    ax.set_xlabel(f"amplitude ({unit})")
+    ax.set_ylabel("period (s)")
+    ax.legend(fontsize=7)
+
+
+def _damping_panel(ax, result: DecayResult, overlay: Overlay, scale, unit):
+    deltas, amps = result.cycle_decrements()
+    half, half_amps = result.half_cycle_decrements()
+    ax.plot(amps * scale, log_decrement_damping(deltas), "o", color="C0", label="per cycle")
+    ax.plot(half_amps * scale, log_decrement_damping(2 * half), ".", color="C0", alpha=0.5,
+            label="per half cycle")
+    zeta, hw = result.fit.damping_ratio()
+    _band(ax, zeta, zeta - hw, zeta + hw, "C1", "fit ζ ± 95 %")
+    if overlay.reference_damping is not None:
+        ax.axhline(overlay.reference_damping, color="C2", ls="-.", label="reference")
+    ax.set_xlabel(f"mean amplitude ({unit})")
+    ax.set_ylabel("damping ratio ζ")
+    ax.legend(fontsize=7)
+
+
+def plot_decay(path: str | Path, time, value, result: DecayResult, *,
+               overlay: Overlay | None = None, scale: float = 1.0, unit: str = "",
+               title: str = "") -> Path:
+    """Write the four-panel decay figure of one record (``value`` in code units) to ``path``."""
+    overlay = overlay or Overlay()
+    time, value = np.asarray(time, dtype=float), np.asarray(value, dtype=float)
+    fig = Figure(figsize=(11, 7.5), layout="constrained")
+    grid = fig.add_gridspec(2, 3)
+    _time_panel(fig.add_subplot(grid[0, :]), time, value, result, overlay, scale, unit)
+    _envelope_panel(fig.add_subplot(grid[1, 0]), result, scale, unit)
+    _period_panel(fig.add_subplot(grid[1, 1]), result, overlay, scale, unit)
+    _damping_panel(fig.add_subplot(grid[1, 2]), result, overlay, scale, unit)
+    if title:
+        fig.suptitle(title)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    return path

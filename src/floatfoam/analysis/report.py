@@ -1,0 +1,231 @@
+"""The project report: every case's theory, and period and damping of every finished CFD run.
+
+``build_report`` walks ``cases/`` (folders starting with ``_`` are shared material, not cases)
+and, for each case, writes into ``build/report/``:
+
+* the linear-theory table (always, even before any CFD run),
+* the comparison of :mod:`floatfoam.analysis.compare` (memoir, theory, potential flow, each
+  ``build/<case>/<level>/motion.csv``, the reference) as ``<case>/comparison.{md,csv}``,
+* one decay figure per CFD run and DoF (``<case>/<level>_<dof>.png``,
+  :mod:`floatfoam.analysis.plots`),
+
+and gathers them in ``index.md`` and ``index.html`` (the same content).
+"""
+
+from __future__ import annotations
+
+import csv
+import datetime
+import subprocess
+from pathlib import Path
+
+import floatfoam
+from floatfoam.analysis.compare import (
+    TABLE_HEADER,
+    Comparison,
+    compare_case,
+    fmt,
+    reference_entry,
+    table_rows,
+    theory_equilibrium,
+    write_comparison,
+)
+from floatfoam.analysis.document import Document
+from floatfoam.analysis.plots import Overlay, plot_decay
+from floatfoam.errors import InputError
+from floatfoam.motion import file_unit
+
+# (key of theory_summary, label, unit)
+THEORY_ROWS = (
+    ("draft", "draft T", "m"),
+    ("displaced_volume", "displaced volume V", "m³"),
+    ("waterplane_area", "waterplane area A_wp", "m²"),
+    ("KB", "KB", "m"),
+    ("KG", "KG", "m"),
+    ("BM_roll", "BM (roll)", "m"),
+    ("BM_pitch", "BM (pitch)", "m"),
+    ("GM_roll", "GM (roll)", "m"),
+    ("GM_pitch", "GM (pitch)", "m"),
+    ("verdict_roll", "verdict (roll)", ""),
+    ("verdict_pitch", "verdict (pitch)", ""),
+    ("heave_period", "heave period (undamped)", "s"),
+    ("roll_period", "roll period (undamped)", "s"),
+    ("pitch_period", "pitch period (undamped)", "s"),
+)
+EQUILIBRIUM_ROWS = (("z_G", "equilibrium z of G", "m"), ("heel", "equilibrium heel", "deg"),
+                    ("trim", "equilibrium trim", "deg"))
+RELEASE_UNITS = {"heave": "m", "heel": "deg", "trim": "deg"}
+
+
+def case_folders(cases_dir: str | Path) -> list[Path]:
+    """Case folders (holding a case.toml) under ``cases_dir``, skipping names starting with _."""
+    return sorted(p.parent for p in Path(cases_dir).glob("*/case.toml")
+                  if not p.parent.name.startswith("_"))
+
+
+def _cell(value) -> str:
+    if isinstance(value, str):
+        return value
+    return fmt(None if value is None else float(value), ".5g")
+
+
+def theory_table(theory: dict) -> tuple[list[str], list[list[str]]]:
+    """Header and rows of the linear theory, with the memoir's values beside where it has any."""
+    memoir = theory.get("memoir") or {}
+    header = ["quantity", "exact theory"] + (
+        [f"memoir ({memoir['source']})" if memoir.get("source") else "memoir"]
+        if memoir else []) + ["unit"]
+    rows = [[label, _cell(theory.get(key))] + ([_cell(memoir.get(key, ""))] if memoir else [])
+            + [unit] for key, label, unit in THEORY_ROWS if key in theory]
+    eq = theory.get("equilibrium") or {}
+    rows += [[label, _cell(eq.get(key))] + ([""] if memoir else []) + [unit]
+             for key, label, unit in EQUILIBRIUM_ROWS if key in eq]
+    return header, rows
+
+
+def _overlay(case, theory: dict, dof: str) -> Overlay:
+    scale, _ = file_unit(dof)
+    eq = theory_equilibrium(theory, dof)
+    release_key = {"heave": "heave", "roll": "heel", "pitch": "trim"}[dof]
+    release = (getattr(case, "release", None) or {}).get(release_key)
+    reference = case.reference or {}
+    period = reference_entry(reference, f"{dof}_period")
+    zeta = reference_entry(reference, f"{dof}_damping_ratio")
+    sources = sorted({e[2] for e in (period, zeta) if e and e[2]})
+    return Overlay(theory_period=theory.get(f"{dof}_period"),
+                   equilibrium=None if eq is None else eq * scale,
+                   release=None if release is None else float(release),
+                   reference_period=period[0] if period else None,
+                   reference_damping=zeta[0] if zeta else None,
+                   reference_source=f"({'; '.join(sources)})" if sources else "")
+
+
+def _plots(case, theory, comparison: Comparison, out_dir: Path) -> list[tuple[str, str]]:
+    images = []
+    for run in comparison.analyses:
+        scale, unit = file_unit(run.dof)
+        name = f"{case.name}/{run.level}_{run.dof}.png"
+        plot_decay(out_dir / name, run.time, run.value, run.result,
+                   overlay=_overlay(case, theory, run.dof), scale=scale, unit=unit,
+                   title=f"{case.name}, {run.level} mesh: {run.dof} decay")
+        images.append((name, f"{case.name} {run.level} {run.dof} decay"))
+    return images
+
+
+def _write_theory_csv(header, rows, path: Path) -> None:
+    with path.open("w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(header)
+        writer.writerows(rows)
+
+
+def _intro(doc: Document, case) -> str:
+    """Heading, description and release of a case; returns its title."""
+    table = case.raw.get("case") or {}
+    title = table.get("title", "")
+    doc.heading(f"{case.name}: {title}" if title else case.name)
+    description = " ".join(str(table.get("description", "")).split())
+    if description:
+        doc.paragraph(description)
+    release = getattr(case, "release", None) or {}
+    parts = [f"{k} {fmt(float(v), 'g')} {RELEASE_UNITS.get(k, '')}".strip()
+             for k, v in release.items()]
+    doc.paragraph("Release: " + (", ".join(parts) or "none given"), note=True)
+    return title
+
+
+def _comparison_section(doc: Document, comparison: Comparison) -> None:
+    doc.heading("Period and damping", 3)
+    if comparison.rows:
+        doc.table(TABLE_HEADER, table_rows(comparison.rows))
+        doc.paragraph("Theory rows give the undamped natural period; CFD rows the damped period "
+                      "T_d of the record with its 95 % confidence interval (from the fit's "
+                      "covariance: optimistic when the misfit is correlated in time); the "
+                      "reference row its value ± the stated uncertainty. Δ: relative difference "
+                      "to the reference, else to the exact linear theory.", note=True)
+    doc.bullets(comparison.notes)
+
+
+def _status(comparison: Comparison) -> str:
+    levels = sorted({run.level for run in comparison.analyses})
+    failed = [r["source"] for r in comparison.rows if r["note"].startswith("analysis failed")]
+    status = "CFD: " + ", ".join(levels) if levels else "theory only"
+    return status + (f"; failed: {', '.join(failed)}" if failed else "")
+
+
+def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
+                  include_potential: bool) -> list[str]:
+    """Add one case's section; return its line of the summary table."""
+    from floatfoam.case import load_case
+    from floatfoam.hydrostatics.theory import theory_summary
+
+    try:
+        case = load_case(str(folder))
+        theory = theory_summary(case)
+    except InputError as err:
+        doc.heading(f"{folder.name}: could not be loaded")
+        doc.paragraph(f"error: {err}")
+        return [folder.name, "—", "—", f"error: {err}"]
+    title = _intro(doc, case)
+    case_out = out_dir / case.name
+    case_out.mkdir(parents=True, exist_ok=True)
+    header, rows = theory_table(theory)
+    _write_theory_csv(header, rows, case_out / "theory.csv")
+    doc.heading("Linear hydrostatic theory", 3)
+    doc.table(header, rows)
+    comparison = compare_case(case, build_dir=build_dir, theory=theory,
+                              include_potential=include_potential)
+    write_comparison(comparison, case_out)
+    _comparison_section(doc, comparison)
+    images = _plots(case, theory, comparison, out_dir)
+    if images:
+        doc.heading("Decay records", 3)
+        for src, alt in images:
+            doc.image(src, alt)
+    return [case.name, title or "—", _periods_cell(theory), _status(comparison)]
+
+
+def _periods_cell(theory: dict) -> str:
+    parts = [f"{dof} {theory[f'{dof}_period']:.4g} s" for dof in ("heave", "roll", "pitch")
+             if theory.get(f"{dof}_period") is not None]
+    return ", ".join(parts) or "—"
+
+
+def _provenance() -> str:
+    try:
+        sha = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                             text=True, check=True, cwd=Path(__file__).parent).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        sha = "unknown"
+    stamp = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    return f"floatfoam {floatfoam.__version__}, git {sha}, generated {stamp}."
+
+
+def build_report(*, cases_dir: str | Path | None = None, build_dir: str | Path | None = None,
+                 out_dir: str | Path | None = None, include_potential: bool = True) -> Path:
+    """Write ``index.md``, ``index.html`` and the per-case files; return the HTML's path.
+
+    Defaults: the repository's ``cases/`` and ``build/``, and ``<build_dir>/report``.
+    """
+    from floatfoam.case import CASES_DIR, ROOT
+
+    cases_dir = Path(cases_dir or CASES_DIR)
+    build_dir = Path(build_dir or ROOT / "build")
+    out_dir = Path(out_dir or build_dir / "report")
+    out_dir.mkdir(parents=True, exist_ok=True)
+    folders = case_folders(cases_dir)
+    if not folders:
+        raise InputError(f"cases_dir = {cases_dir}: no case folder with a case.toml; valid is "
+                         "the project's cases/ directory")
+    body = Document("")
+    summary = [_case_section(body, folder, build_dir, out_dir, include_potential)
+               for folder in folders]
+    doc = Document("floatfoam report")
+    doc.paragraph(_provenance(), note=True)
+    doc.heading("Cases")
+    doc.table(("case", "title", "linear theory periods", "status"), summary)
+    doc.blocks += body.blocks
+    (out_dir / "index.md").write_text(doc.markdown())
+    html_path = out_dir / "index.html"
+    html_path.write_text(doc.html())
+    return html_path

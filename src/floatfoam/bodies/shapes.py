@@ -1,0 +1,224 @@
+"""Floating bodies: the memoir's shapes and any closed surface.
+
+Every body lives in its own frame (docs/conventions.md): origin at the geometric centre (the
+centre of the bounding box for the primitives), x along the long axis, z up. A body gives
+
+* ``surface_mesh()``: a closed, outward-oriented triangle mesh (every body);
+* ``section_polygon()``: its (y, z) section, counter-clockwise (2D sections only);
+* ``closed_form(z_c, heel, trim)``: exact hydrostatics where known, else None;
+* ``contains(point)``: whether a body-frame point is inside.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from floatfoam.bodies.geometry import extrude_polygon, icosphere, mesh_volume, winding_number
+from floatfoam.hydrostatics import closed_forms
+
+SECTION_POINTS = 2048  # polygon vertices of a 2D section: area error ~ (2π²/3)/N² ≈ 2e-6
+SPHERE_LEVEL = 5  # icosphere subdivisions: 20480 triangles, volume error ≈ 0.1 %
+
+
+class Body:
+    """Base class; subclasses set ``lo``/``hi`` (bounding box, body frame)."""
+
+    is_section = False
+    length: float | None = None
+    lo: np.ndarray
+    hi: np.ndarray
+
+    @property
+    def size(self) -> float:
+        return float(np.max(self.hi - self.lo))
+
+    @property
+    def keel_z(self) -> float:
+        """Height of the keel (lowest point of the upright body) in the body frame."""
+        return float(self.lo[2])
+
+    def closed_form(self, z_c, heel, trim):
+        return None
+
+    def surface_mesh(self, resolution=None):
+        raise NotImplementedError
+
+    def volume(self) -> float:
+        v, f = self.surface_mesh()
+        return mesh_volume(v, f)
+
+    def contains(self, point) -> bool:
+        v, f = self.surface_mesh()
+        return winding_number(v, f, np.asarray(point, dtype=float)) > 0.5
+
+
+class SectionBody(Body):
+    """A horizontal prism of length L along x with a (y, z) section."""
+
+    is_section = True
+
+    def section_polygon(self, resolution=None) -> np.ndarray:
+        raise NotImplementedError
+
+    def surface_mesh(self, resolution=None):
+        return extrude_polygon(self.section_polygon(resolution), self.length)
+
+    def section_area(self) -> float:
+        y, z = self.section_polygon().T
+        return 0.5 * float(np.sum(y * np.roll(z, -1) - np.roll(y, -1) * z))
+
+    def volume(self) -> float:
+        return self.section_area() * self.length
+
+    def contains(self, point) -> bool:
+        x, y, z = point
+        return abs(x) <= self.length / 2 and _inside_polygon(self.section_polygon(), y, z)
+
+
+class EllipticCylinder(SectionBody):
+    """Horizontal cylinder on an ellipse of semi-axes b (half beam, y) and c (half height, z);
+    the circle is b = c. In the memoir's form y² = n x + m x², n = 2b²/c, m = −b²/c²."""
+
+    def __init__(self, half_beam: float, half_height: float, length: float):
+        self.b, self.c, self.length = half_beam, half_height, length
+        self.lo = np.array([-length / 2, -half_beam, -half_height])
+        self.hi = -self.lo
+
+    def closed_form(self, z_c, heel, trim):
+        if trim != 0.0:
+            return None
+        return closed_forms.ellipse_section(self.b, self.c, self.length, z_c, heel)
+
+    def section_polygon(self, resolution=None):
+        t = np.linspace(0.0, 2 * np.pi, resolution or SECTION_POINTS, endpoint=False)
+        return np.column_stack([self.b * np.sin(t), -self.c * np.cos(t)])
+
+    def section_area(self):
+        return math.pi * self.b * self.c
+
+    def contains(self, point):
+        x, y, z = point
+        return abs(x) <= self.length / 2 and (y / self.b) ** 2 + (z / self.c) ** 2 <= 1.0
+
+
+class ConicCylinder(SectionBody):
+    """Horizontal cylinder on the memoir's conic base y² = n x + m x² (x up from the vertex,
+    the keel), closed by a flat deck at height h: m = 0 parabola, m > 0 hyperbola, m < 0 an
+    ellipse cut below its top (use :class:`EllipticCylinder` for the whole ellipse)."""
+
+    def __init__(self, n: float, m: float, height: float, length: float):
+        self.n, self.m, self.h, self.length = n, m, height, length
+        widest = height if m >= 0 else min(height, -n / (2 * m))
+        self.half_beam = self.half_width(widest)
+        self.lo = np.array([-length / 2, -self.half_beam, -height / 2])
+        self.hi = np.array([length / 2, self.half_beam, height / 2])
+
+    def half_width(self, x):
+        return np.sqrt(np.maximum(self.n * x + self.m * x * x, 0.0))
+
+    def closed_form(self, z_c, heel, trim):
+        if heel != 0.0 or trim != 0.0:
+            return None
+        depth = min(max(self.h / 2 - z_c, 0.0), self.h)
+        i0, i1, w = closed_forms.conic_integrals(self.n, self.m, depth)
+        if depth >= self.h:
+            w = 0.0  # fully submerged: no waterplane
+        return closed_forms.upright_section(2 * i0, 2 * i1, w, self.length, self.keel_z, z_c)
+
+    def section_polygon(self, resolution=None):
+        k = (resolution or SECTION_POINTS) // 2
+        x = self.h * np.linspace(0.0, 1.0, k) ** 2  # dense near the vertex, where w ~ √x
+        right = np.column_stack([self.half_width(x), x - self.h / 2])
+        left = right[::-1].copy()
+        left[:, 0] *= -1
+        return np.concatenate([right, left[:-1]])
+
+    def contains(self, point):
+        x, y, z = point
+        xi = z + self.h / 2
+        return abs(x) <= self.length / 2 and 0 <= xi <= self.h and abs(y) <= self.half_width(xi)
+
+
+class Box(SectionBody):
+    """Box section of beam B (y) and height D (z), with an optional bilge radius r."""
+
+    def __init__(self, beam: float, height: float, length: float, bilge_radius: float = 0.0):
+        self.beam, self.height, self.length, self.r = beam, height, length, bilge_radius
+        self.lo = np.array([-length / 2, -beam / 2, -height / 2])
+        self.hi = -self.lo
+
+    def closed_form(self, z_c, heel, trim):
+        if heel != 0.0 or trim != 0.0:
+            return None
+        depth = min(max(self.height / 2 - z_c, 0.0), self.height)
+        i0, i1, w = closed_forms.box_integrals(self.beam, self.r, depth)
+        if depth >= self.height:
+            w = 0.0
+        return closed_forms.upright_section(2 * i0, 2 * i1, w, self.length, self.keel_z, z_c)
+
+    def section_polygon(self, resolution=None):
+        half_b, half_d, r = self.beam / 2, self.height / 2, self.r
+        if r <= 0.0:
+            return np.array([[-half_b, -half_d], [half_b, -half_d], [half_b, half_d],
+                             [-half_b, half_d]])
+        k = max((resolution or SECTION_POINTS) // 4, 4)
+        t = np.linspace(0.0, np.pi / 2, k)
+        right = np.column_stack([half_b - r + r * np.sin(t), -half_d + r - r * np.cos(t)])
+        left = np.column_stack([-half_b + r - r * np.cos(t), -half_d + r - r * np.sin(t)])
+        corners = np.array([[half_b, half_d], [-half_b, half_d]])
+        return np.concatenate([right, corners, left])
+
+    def section_area(self):
+        return self.beam * self.height - (4 - math.pi) * self.r**2 / 2
+
+    def contains(self, point):
+        x, y, z = point
+        half_b, half_d, r = self.beam / 2, self.height / 2, self.r
+        if abs(x) > self.length / 2 or abs(y) > half_b or abs(z) > half_d:
+            return False
+        dy, dz = abs(y) - (half_b - r), (z + half_d) - r
+        return not (dy > 0 and dz < 0 and dy * dy + dz * dz > r * r)
+
+
+class Ellipsoid(Body):
+    """Triaxial ellipsoid of semi-axes (a_x, a_y, a_z); the sphere has them equal."""
+
+    def __init__(self, semi_axes):
+        self.axes = np.asarray(semi_axes, dtype=float)
+        self.lo, self.hi = -self.axes, self.axes.copy()
+
+    def closed_form(self, z_c, heel, trim):
+        return closed_forms.ellipsoid(self.axes, z_c, heel, trim)
+
+    def surface_mesh(self, resolution=None):
+        v, f = icosphere(SPHERE_LEVEL if resolution is None else resolution)
+        return v * self.axes, f
+
+    def volume(self):
+        return 4.0 / 3.0 * math.pi * float(np.prod(self.axes))
+
+    def contains(self, point):
+        return float(np.sum((np.asarray(point) / self.axes) ** 2)) <= 1.0
+
+
+class MeshBody(Body):
+    """Any closed body given as a triangle mesh (from an STL or an implicit surface)."""
+
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray):
+        self.vertices, self.faces = vertices, faces
+        self.lo, self.hi = vertices.min(axis=0), vertices.max(axis=0)
+
+    def surface_mesh(self, resolution=None):
+        return self.vertices, self.faces
+
+
+def _inside_polygon(poly: np.ndarray, y: float, z: float) -> bool:
+    """Even-odd rule point-in-polygon test."""
+    y0, z0 = poly[:, 0], poly[:, 1]
+    y1, z1 = np.roll(y0, -1), np.roll(z0, -1)
+    crosses = (z0 > z) != (z1 > z)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        y_cross = y0 + (z - z0) * (y1 - y0) / (z1 - z0)
+    return bool(np.count_nonzero(crosses & (y < y_cross)) % 2)

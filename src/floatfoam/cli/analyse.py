@@ -1,0 +1,104 @@
+"""``floatfoam analyse RUN_DIR_OR_CSV``: period and damping of one free-decay record.
+
+With ``--json`` it prints one object (keys in :func:`floatfoam.analysis.decay.decay_dict`;
+confidence intervals are 95 % [lo, hi] pairs); otherwise a readable table.
+"""
+
+from __future__ import annotations
+
+import math
+
+from floatfoam.analysis.decay import analyse_decay, decay_dict, log_decrement_damping
+from floatfoam.cli.common import dump_json
+from floatfoam.motion import DOF_COLUMNS, dof_series, file_unit, motion_path, read_motion
+
+
+def add_arguments(parser) -> None:
+    """The analyse command's arguments (shared with postprocess/analyse.py)."""
+    parser.add_argument("source", metavar="RUN_DIR_OR_CSV",
+                        help="a run directory holding motion.csv, or a motion CSV")
+    parser.add_argument("--dof", choices=list(DOF_COLUMNS), default="heave",
+                        help="degree of freedom to analyse (default: heave)")
+    parser.add_argument("--equilibrium", metavar="VALUE",
+                        help="level the motion decays to, in file units (m, deg), or 'tail'; "
+                             "default: fitted")
+    parser.add_argument("--drift", action="store_true", help="fit a linear drift of the mean")
+    parser.add_argument("--quadratic", action="store_true",
+                        help="fit linear + quadratic damping (integrates the ODE; slower)")
+    parser.add_argument("--start", type=float, metavar="T",
+                        help="ignore the record before time T (s)")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument("--plot", metavar="PNG", help="write the decay figure to PNG")
+
+
+def register(sub) -> None:
+    p = sub.add_parser("analyse", help="period and damping of a free-decay motion record")
+    add_arguments(p)
+    p.set_defaults(func=run)
+
+
+def _equilibrium(text: str | None, scale: float):
+    from floatfoam.errors import InputError
+
+    if text is None or text == "tail":
+        return text
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"--equilibrium {text!r}: valid is a number (m or deg) or 'tail'"
+                         ) from None
+    if not math.isfinite(value):
+        raise InputError(f"--equilibrium {text}: valid is a finite number (m or deg) or 'tail'")
+    return value / scale
+
+
+def run(args) -> int:
+    path = motion_path(args.source)
+    scale, unit = file_unit(args.dof)
+    time, value = dof_series(read_motion(path), args.dof)
+    result = analyse_decay(time, value, equilibrium=_equilibrium(args.equilibrium, scale),
+                           drift=args.drift, quadratic=args.quadratic, t_start=args.start,
+                           units=(scale, unit), name=DOF_COLUMNS[args.dof][0])
+    data = {"source": str(path), **decay_dict(result, scale=scale, unit=unit, dof=args.dof)}
+    if args.plot:
+        from floatfoam.analysis.plots import plot_decay
+
+        data["plot"] = str(plot_decay(args.plot, time, value, result, scale=scale, unit=unit,
+                                      title=f"{path}: {args.dof} decay"))
+    print(dump_json(data) if args.json else format_result(data))
+    return 0
+
+
+def _ci(pair) -> str:
+    return f"[{pair[0]:.5g}, {pair[1]:.5g}]"
+
+
+def format_result(d: dict) -> str:
+    """Readable summary of :func:`decay_dict` output."""
+    u = d["unit"]
+    lines = [f"{d['source']}: {d['dof']} ({u}), model {d['model']}",
+             f"mean level {d['equilibrium']:.6g} {u} ({d['equilibrium_source']}), drift "
+             f"{d['drift']:.3g} {u}/s; initial amplitude {d['amplitude']:.4g} {u}",
+             f"usable: t = {d['t_first']:g} … {d['t_usable']:.4g} s, {d['n_cycles']:.3g} cycles; "
+             f"noise rms {d['noise_rms']:.3g} {u}, fit residual rms {d['residual_rms']:.3g} {u}",
+             "",
+             f"{'':24}{'value':>12}  95 % interval",
+             f"{'damped period T_d (s)':<24}{d['period_mean']:>12.5g}  {_ci(d['period_ci95'])}",
+             f"{'natural period T_n (s)':<24}{d['natural_period']:>12.5g}  "
+             f"{_ci(d['natural_period_ci95'])}",
+             f"{'damping ratio ζ':<24}{d['damping_ratio']:>12.5g}  "
+             f"{_ci(d['damping_ratio_ci95'])}"]
+    if "quadratic_damping" in d:
+        lines += [f"{'quadratic c_q (1/' + u + ')':<24}{d['quadratic_damping']:>12.5g}  "
+                  f"{_ci(d['quadratic_damping_ci95'])}",
+                  f"{'equivalent ζ at A₀':<24}{d['damping_ratio_equivalent']:>12.5g}"]
+    lines += ["", f"{'cycle':>5} {'T zero-up (s)':>14} {'amplitude':>11}"]
+    lines += [f"{i + 1:>5} {p:>14.5g} {a:>11.4g}"
+              for i, (p, a) in enumerate(zip(d["periods"], d["period_amplitudes"], strict=True))]
+    lines += ["", f"{'cycle':>5} {'δ':>9} {'ζ':>9} {'mean amplitude':>15}"]
+    zetas = log_decrement_damping(d["log_decrements"])
+    lines += [f"{i + 1:>5} {delta:>9.4f} {z:>9.4f} {a:>15.4g}" for i, (delta, z, a)
+              in enumerate(zip(d["log_decrements"], zetas, d["damping_amplitudes"], strict=True))]
+    if "plot" in d:
+        lines += ["", f"plot: {d['plot']}"]
+    return "\n".join(lines)

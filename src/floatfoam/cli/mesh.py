@@ -1,0 +1,166 @@
+"""``floatfoam mesh body|domain|table``: body surfaces, fluid domains and the levels table.
+
+* ``mesh body CASE``: the body's STL (and a 2D section's polygon) at a level and pose, with the
+  immersed volume of the discrete body against the exact one;
+* ``mesh domain CASE``: the fluid domain (2D, wedge or 3D) as MSH 2.2 for gmshToFoam, and with
+  ``--check`` gmshToFoam + checkMesh on it;
+* ``mesh table [CASE ...]``: per case and level, the discrete volume errors and (``--domains``)
+  the cells, as a Markdown table.
+
+The same arguments serve the thin scripts of meshes/.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from floatfoam.case import CASES_DIR, ROOT, load_case
+from floatfoam.cli.common import add_case_arguments, dump_json
+from floatfoam.meshing.levels import LEVELS, POSES, mesh_spec, pose
+
+
+def add_level_argument(parser) -> None:
+    parser.add_argument("--level", default="coarse", choices=[*LEVELS, "all"],
+                        help="mesh level (default: coarse; all: the three)")
+
+
+def add_body_arguments(parser) -> None:
+    """Arguments of ``mesh body`` (and meshes/body_surface.py)."""
+    add_case_arguments(parser)
+    add_level_argument(parser)
+    parser.add_argument("--pose", default="body", choices=POSES,
+                        help="body: its own frame (default); equilibrium: the theory's "
+                             "floating position; release: equilibrium + the [release] offsets")
+    parser.add_argument("--out", metavar="DIR", type=Path,
+                        help="output folder (default: build/CASE/mesh/LEVEL)")
+    parser.add_argument("--json", action="store_true", help="print the reports as JSON")
+
+
+def add_domain_arguments(parser) -> None:
+    """Arguments of ``mesh domain`` (and meshes/fluid_domain.py)."""
+    add_case_arguments(parser)
+    add_level_argument(parser)
+    parser.add_argument("--kind", default="auto", choices=["auto", "2d", "wedge", "3d"],
+                        help="auto: 2d for a section, wedge for an upright body of "
+                             "revolution, else 3d")
+    parser.add_argument("--pose", default="release", choices=POSES[1:],
+                        help="release (default: the decay test's start) or equilibrium")
+    parser.add_argument("--out", metavar="FILE", type=Path,
+                        help="output .msh (default: build/CASE/mesh/LEVEL/domain_KIND.msh)")
+    parser.add_argument("--check", action="store_true",
+                        help="convert with gmshToFoam and run checkMesh (next to the .msh)")
+    parser.add_argument("--json", action="store_true", help="print the results as JSON")
+
+
+def add_table_arguments(parser) -> None:
+    """Arguments of ``mesh table`` (and meshes/mesh_table.py)."""
+    parser.add_argument("cases", nargs="*", metavar="CASE",
+                        help="cases (default: every case under cases/)")
+    parser.add_argument("--domains", action="store_true",
+                        help="also mesh each level's fluid domain and count its cells")
+    parser.add_argument("--check", action="store_true",
+                        help="with --domains: gmshToFoam + checkMesh each domain")
+    parser.add_argument("--json", action="store_true", help="print the rows as JSON")
+
+
+def register(sub) -> None:
+    p = sub.add_parser("mesh", help="body surfaces, fluid domains and mesh levels (gmsh)")
+    actions = p.add_subparsers(dest="mesh_action", required=True, metavar="ACTION")
+    add_body_arguments(actions.add_parser("body", help="body STL + discrete volume report"))
+    actions.choices["body"].set_defaults(func=run_body)
+    add_domain_arguments(actions.add_parser("domain", help="fluid domain for gmshToFoam"))
+    actions.choices["domain"].set_defaults(func=run_domain)
+    add_table_arguments(actions.add_parser("table", help="mesh levels table (Markdown)"))
+    actions.choices["table"].set_defaults(func=run_table)
+
+
+def _levels(level: str) -> tuple[str, ...]:
+    return LEVELS if level == "all" else (level,)
+
+
+def run_body(args) -> int:
+    from floatfoam.hydrostatics.theory import equilibrium
+    from floatfoam.meshing.body_surface import write_body
+    from floatfoam.meshing.volume_report import discrete_volume_report, format_report
+
+    case = load_case(args.case, args.overrides)
+    eq = equilibrium(case)
+    where = pose(case, args.pose, eq)
+    reports = []
+    for level in _levels(args.level):
+        folder = args.out or ROOT / "build" / case.name / "mesh" / level
+        stem = "body" if args.pose == "body" else f"body_{args.pose}"
+        written = write_body(case, mesh_spec(case, level), where, folder, stem)
+        report = discrete_volume_report(case, level, equilibrium=eq)
+        report["written"] = {k: str(v) for k, v in written.items()}
+        reports.append(report)
+        if not args.json:
+            print(format_report(report))
+            print("  written " + ", ".join(report["written"].values()))
+    if args.json:
+        print(dump_json(reports))
+    return 0
+
+
+def run_domain(args) -> int:
+    from floatfoam.foam.meshcheck import convert_and_check
+    from floatfoam.meshing.domains import build_domain, format_domain
+
+    case = load_case(args.case, args.overrides)
+    results = []
+    for level in _levels(args.level):
+        out = args.out
+        if out is not None and args.level == "all":
+            out = out.with_name(f"{out.stem}_{level}{out.suffix}")
+        result = build_domain(case, level, args.kind, args.pose, out)
+        if args.check:
+            msh = Path(result["path"])
+            result["checkMesh"] = convert_and_check(msh, msh.with_name(f"foam_{msh.stem}"))
+        results.append(result)
+        if not args.json:
+            print(format_domain(result))
+            if args.check:
+                q = result["checkMesh"]
+                print(f"  checkMesh: {'Mesh OK' if q['mesh_ok'] else 'FAILED'}, max "
+                      f"non-orthogonality {q['max_non_orthogonality']:.3g}° (average "
+                      f"{q['average_non_orthogonality']:.3g}°), max skewness "
+                      f"{q['max_skewness']:.3g}; log {q['log']}")
+    if args.json:
+        print(dump_json(results))
+    return 0 if all(r.get("checkMesh", {}).get("mesh_ok", True) for r in results) else 1
+
+
+def run_table(args) -> int:
+    from floatfoam.meshing.table import level_rows, markdown
+
+    names = args.cases or sorted(p.parent.name for p in CASES_DIR.glob("*/case.toml")
+                                 if not p.parent.name.startswith("_"))
+    rows = []
+    for name in names:
+        rows += level_rows(load_case(name), domains=args.domains,
+                           check=args.check and args.domains,
+                           scratch=ROOT / "build" / "mesh_table")
+    print(dump_json(rows) if args.json else markdown(rows))
+    return 0
+
+
+def script_main(prog: str, doc: str, add_arguments, run, argv=None) -> int:
+    """Entry point of a meshes/ script: parse, run, one-line errors (exit 2 for bad input,
+    1 for a failed OpenFOAM check), tracebacks only with --debug."""
+    import argparse
+    import sys
+
+    from floatfoam.errors import InputError
+    from floatfoam.foam.meshcheck import MeshCheckError
+
+    parser = argparse.ArgumentParser(prog=prog, description=doc.strip().splitlines()[0])
+    parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
+    add_arguments(parser)
+    args = parser.parse_args(argv)
+    try:
+        return run(args)
+    except (InputError, MeshCheckError) as err:
+        if args.debug:
+            raise
+        print(f"{prog}: error: {err}", file=sys.stderr)
+        return 2 if isinstance(err, InputError) else 1

@@ -1,0 +1,63 @@
+"""``floatfoam run CASE``: the CFD free-decay run of a case (OpenFOAM interFoam + six DoF)."""
+
+from __future__ import annotations
+
+import sys
+
+from floatfoam.case import load_case
+from floatfoam.cli.common import add_case_arguments
+from floatfoam.errors import InputError
+from floatfoam.foam.driver import run_case
+from floatfoam.foam.render import LEVELS
+from floatfoam.foam.runner import RunError
+
+
+def register(sub) -> None:
+    p = sub.add_parser("run", help="run the CFD free decay of a case (OpenFOAM v1912)")
+    add_case_arguments(p)
+    p.add_argument("--level", default="coarse", help=f"mesh level: {', '.join(LEVELS)}")
+    p.add_argument("--np", type=int, default=1, help="MPI ranks (default 1: serial)")
+    p.add_argument("--force", action="store_true",
+                   help="move an earlier run of this case and level aside and run anew")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    case = load_case(args.case, args.overrides)
+    if args.level not in LEVELS:
+        raise InputError(f"--level {args.level!r}: valid levels are {', '.join(LEVELS)}")
+    try:
+        result = run_case(case, args.level, args.np, args.force)
+    except RunError as err:
+        print(f"floatfoam run: {err}", file=sys.stderr)
+        return 1
+    if result.already_finished:
+        print(f"{result.run_dir} holds a finished run (use --force to run it again).")
+    print_summary(case, result)
+    return 0
+
+
+def print_summary(case, result) -> None:
+    """The motion series and its heave period beside the theory's."""
+    from floatfoam.analysis.decay import analyse_decay
+    from floatfoam.hydrostatics.theory import theory_summary
+    from floatfoam.motion import dof_series, read_motion
+
+    theory = theory_summary(case)
+    if not result.motion_csv.exists():  # a body held still (run.static_body) has no motion
+        print(f"no motion series (the body is held still); run: {result.run_dir}")
+        return
+    print(f"motion series: {result.motion_csv}")
+    t, z = dof_series(read_motion(result.motion_csv), "heave")
+    print(f"{'time (s)':>9} {'z of G (m)':>12}")
+    for i in range(0, len(t), max(1, len(t) // 12)):
+        print(f"{t[i]:>9.3f} {z[i]:>12.6f}")
+    memoir = theory["memoir"].get("heave_period")
+    print(f"theory heave period (no added mass): {theory['heave_period']:.4f} s"
+          + (f"; memoir: {memoir:.4f} s" if memoir else ""))
+    try:
+        decay = analyse_decay(t, z).summary()
+        print(f"CFD damped heave period: {decay['period_mean']:.4f} s, damping ratio "
+              f"{decay['damping_ratio']:.3f} over {decay['n_cycles']:.1f} cycles")
+    except InputError as err:
+        print(f"CFD decay analysis: {err}")

@@ -1,0 +1,10 @@
+"""Hydrostatics and the linear theory of Le Barbier (1817), without the fluid's resistance.
+
+* :mod:`~floatfoam.hydrostatics.immersion`: immersed volume, centre of buoyancy and waterplane
+  of any body at any attitude (closed form where known, else numeric);
+* :mod:`~floatfoam.hydrostatics.closed_forms`: the exact hydrostatics of the memoir's bodies;
+* :mod:`~floatfoam.hydrostatics.theory`: equilibrium, stiffness, GM, verdicts, linear periods;
+* :mod:`~floatfoam.hydrostatics.gz`: the righting-arm curve to large angles;
+* :mod:`~floatfoam.hydrostatics.memoir`: the memoir's formulas, body by body;
+  :mod:`~floatfoam.hydrostatics.memoir_case` evaluates them for a case.
+"""

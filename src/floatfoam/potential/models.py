@@ -1,0 +1,118 @@
+"""Free-decay motion series of a case from the three time-domain models.
+
+* ``linear``: the memoir's linear model M ẍ + C x = 0 (no added mass, no damping);
+* ``nonlinear``: the memoir's rigorous equations, exact hydrostatics at every instant
+  (:mod:`floatfoam.potential.rigid_body`);
+* ``cummins``: Cummins (1962) with A∞ and the radiation memory from the potential-flow
+  coefficients (:mod:`floatfoam.potential.radiation`), linear or nonlinear restoring.
+
+The body is released from rest at its equilibrium displaced by the case's [release] offsets
+(heave of G in m, heel and trim in degrees). The series has the motion-CSV columns
+(docs/conventions.md): G's position, the angles in degrees, G's velocity and the angular
+velocity in earth axes in deg/s (p, q, r = the Euler-angle rates φ̇, θ̇, 0 for the linear
+models).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from floatfoam.bodies.geometry import rotation
+from floatfoam.errors import InputError
+
+MODELS = ("linear", "nonlinear", "cummins")
+PERIODS = 10  # default duration: ten of the longest characteristic period
+STEPS_PER_PERIOD = 200  # of the shortest characteristic period
+
+
+def _setup(case):
+    from floatfoam.hydrostatics.theory import equilibrium, stiffness_matrix
+    from floatfoam.potential.resonance import mass_matrix
+
+    eq = equilibrium(case)
+    g_pos = rotation(eq.heel, eq.trim) @ case.cog + np.array([0.0, 0.0, eq.z_c])
+    stiffness = stiffness_matrix(case, eq)
+    mass = mass_matrix(case.mass, case.gyradius, rotation(eq.heel, eq.trim))
+    x0 = np.array([case.release["heave"], math.radians(case.release["heel"]),
+                   math.radians(case.release["trim"])])
+    return eq, g_pos, mass, stiffness, x0
+
+
+def time_scales(mass: np.ndarray, stiffness: np.ndarray) -> np.ndarray:
+    """Characteristic periods 2π √(M_ii / |C_ii|) of the DoFs with a non-zero stiffness."""
+    diag_c, diag_m = np.abs(np.diag(stiffness)), np.diag(mass)
+    ok = diag_c > 1e-12 * diag_c.max()
+    return 2.0 * math.pi * np.sqrt(diag_m[ok] / diag_c[ok])
+
+
+def decay_series(case, model: str, *, duration: float | None = None, dt: float | None = None,
+                 nonlinear_restoring: bool = False, coefficients=None) -> dict:
+    """Motion series of ``case`` by ``model`` (one of MODELS), in file units (degrees).
+
+    Returns a dict with the motion-CSV columns (time, x, y, z, roll, pitch, yaw, u, v, w, p,
+    q, r) as arrays, plus ``model`` and, for cummins, ``added_mass_inf``.
+    """
+    if model not in MODELS:
+        raise InputError(f"--model {model!r}: valid models are {', '.join(MODELS)}")
+    eq, g_pos, mass, stiffness, x0 = _setup(case)
+    scales = time_scales(mass, stiffness)
+    if duration is None:
+        duration = PERIODS * float(scales.max()) if len(scales) else 10.0
+    if not duration > 0:
+        raise InputError(f"--duration {duration!r}: valid is a positive number of seconds")
+    dt = dt or (float(scales.min()) if len(scales) else duration) / STEPS_PER_PERIOD
+    t = np.arange(0.0, duration + 0.5 * dt, dt)
+    out = {"model": model, "time": t, "x": np.full_like(t, g_pos[0]),
+           "y": np.full_like(t, g_pos[1]), "u": np.zeros_like(t), "v": np.zeros_like(t)}
+    if model == "nonlinear":
+        from floatfoam.potential.rigid_body import RigidBody, nonlinear_decay
+
+        res = nonlinear_decay(RigidBody.from_case(case), g_pos[2] + x0[0], eq.heel + x0[1],
+                              eq.trim + x0[2], t)
+        deg = math.degrees(1.0)
+        out.update(z=res["z"], roll=res["heel"] * deg, pitch=res["trim"] * deg,
+                   yaw=res["yaw"] * deg, w=res["w"], p=res["omega_earth"][:, 0] * deg,
+                   q=res["omega_earth"][:, 1] * deg, r=res["omega_earth"][:, 2] * deg)
+        return out
+    if model == "linear":
+        from floatfoam.potential.timedomain import linear_decay
+
+        x, v = linear_decay(mass, stiffness, x0, t)
+    else:
+        x, v, a_inf = _cummins(case, eq, g_pos, mass, stiffness, x0, t, nonlinear_restoring,
+                               coefficients)
+        out["added_mass_inf"] = a_inf
+    deg = math.degrees(1.0)
+    out.update(z=g_pos[2] + x[:, 0], roll=math.degrees(eq.heel) + x[:, 1] * deg,
+               pitch=math.degrees(eq.trim) + x[:, 2] * deg, yaw=np.zeros_like(t),
+               w=v[:, 0], p=v[:, 1] * deg, q=v[:, 2] * deg, r=np.zeros_like(t))
+    return out
+
+
+def _cummins(case, eq, g_pos, mass, stiffness, x0, t, nonlinear_restoring, coefficients):
+    from floatfoam.potential.radiation import radiation_coefficients
+    from floatfoam.potential.timedomain import cummins_decay, retardation_kernel
+
+    coef = coefficients or radiation_coefficients(case, eq)
+    spacing = float(coef.omega[1] - coef.omega[0])
+    # the kernel is resolved up to t ≈ 2π/Δω by the frequency sampling; it has decayed by then
+    kernel_t = t[t <= min(t[-1], 2.0 * math.pi / spacing)]
+    kernel = retardation_kernel(coef.omega, coef.damping, kernel_t)
+    restoring = None
+    if nonlinear_restoring:
+        from floatfoam.potential.rigid_body import RigidBody, restoring_force
+
+        restoring = restoring_force(RigidBody.from_case(case), g_pos[2], eq.heel, eq.trim)
+    x, v = cummins_decay(mass, stiffness, coef.added_mass_inf, kernel_t, kernel, x0, t,
+                         restoring=restoring)
+    return x, v, coef.added_mass_inf
+
+
+def write_series(path, series: dict):
+    """Write a series as a motion CSV (docs/conventions.md)."""
+    from floatfoam.motion import MOTION_COLUMNS, write_motion
+
+    return write_motion(path, series["time"],
+                        **{k: series[k] for k in MOTION_COLUMNS[1:] if k in series})

@@ -1,0 +1,311 @@
+"""Linear potential flow: added mass A(ω) and radiation damping B(ω) of a body at equilibrium.
+
+* 3D bodies: Capytaine 3.0 (Ancellin & Dias 2019), **direct** boundary integral equation
+  (Green's identity, as in WAMIT: converges faster for the forces than Capytaine's default
+  source method; the hemisphere at the default 800 panels is within 1.5 % of Hulme 1982),
+  constant panels on the wetted surface remeshed by :mod:`~floatfoam.potential.bem_mesh`
+  (only the half or quarter of a symmetric hull, Capytaine rebuilding the rest by reflection), a
+  lid on the interior waterplane (z = 0) for irregular-frequency removal, infinite or finite depth.
+* 2D sections: the panel method of :mod:`floatfoam.potential.sections` (per metre, deep water),
+  multiplied by the section's length L (strip theory without end effects, docs/conventions.md:
+  section quantities are for the length L).
+
+Degrees of freedom (heave, roll, pitch), rotations about the centre of gravity G at
+equilibrium, earth axes. Results are cached in ``build/potential/<sha256>.npz`` keyed by the
+body's surface mesh, the attitude, the panel count, G, the depth, the fluid and the
+frequencies (and the Capytaine and floatfoam versions).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from floatfoam.potential import bem_mesh
+from floatfoam.potential import sections as section_bem
+
+DOFS = ("heave", "roll", "pitch")
+CACHE_VERSION = 1  # bump when the numerics change
+OMEGA_MIN_ND = 0.05  # ω √(ℓ/g), ℓ = half the waterline beam (2D) or √(A_wp/π) (3D)
+OMEGA_MAX_ND = 2.5  # wave length 2πℓ/2.5² ≈ ℓ: ≈ 7 panels per wave length at 800 panels
+FREQUENCIES = 32
+COUPLING_NOTE = 0.05  # off-diagonal / √(diagonal product) above which a note says so
+MIN_KH = 0.15  # Capytaine's finite-depth Green function (Prony fit) fails below kh ≈ 0.1–0.15
+
+
+@dataclass(frozen=True)
+class RadiationCoefficients:
+    """A(ω), B(ω) for (heave, roll, pitch) about G, earth axes; for a 2D section, for its
+    length L (the 2D values times L).
+
+    Attributes
+    ----------
+    omega : (n,) rad/s
+    added_mass, damping : (n, 3, 3) in kg, kg·m, kg·m² (and N·s/m, N·m·s, N·m·s)
+    added_mass_inf : (3, 3), the infinite-frequency limit A∞
+    method : "capytaine-3d" or "panel-2d"
+    panels : number of panels on the wetted surface (the whole hull, lid not counted)
+    depth : water depth used by the solver (inf for deep water)
+    covered : which of (heave, roll, pitch) the solver covers (2D: no pitch)
+    notes : what the user should know about these numbers
+    """
+
+    omega: np.ndarray
+    added_mass: np.ndarray
+    damping: np.ndarray
+    added_mass_inf: np.ndarray
+    method: str
+    panels: int
+    depth: float
+    covered: tuple[bool, bool, bool] = (True, True, True)
+    notes: tuple[str, ...] = field(default=())
+
+
+def frequency_grid(length: float, *, g: float = 9.81, omega_min_nd: float = OMEGA_MIN_ND,
+                   omega_max_nd: float = OMEGA_MAX_ND, count: int = FREQUENCIES) -> np.ndarray:
+    """Equally spaced frequencies ω = ω̂ √(g/ℓ) for ω̂ in [omega_min_nd, omega_max_nd] (equal
+    spacing suits the cosine transform of the Cummins kernel)."""
+    scale = math.sqrt(g / length)
+    return np.linspace(omega_min_nd * scale, omega_max_nd * scale, count)
+
+
+def capytaine_coefficients(vertices: np.ndarray, faces: np.ndarray, *, centre, omegas,
+                           depth: float = math.inf, rho: float = 1000.0, g: float = 9.81,
+                           lid: bool = True, planes: tuple[str, ...] = (), lid_mesh=None):
+    """Radiation coefficients of a wetted hull mesh (earth frame, z ≤ 0) with Capytaine.
+
+    ``planes``: the mesh is the part y ≥ 0 ("xOz") and/or x ≥ 0 ("yOz") of a symmetric hull,
+    rebuilt by reflection (Capytaine's ReflectionSymmetricMesh). ``lid_mesh``: (vertices,
+    faces) of the interior waterplane of that part (default: Capytaine's ``generate_lid``).
+
+    Solves Capytaine's radiation problems for Heave, Roll and Pitch about ``centre`` with the
+    direct method; A_ij = Re F_ij / ω², B_ij = Im F_ij / ω (Capytaine's convention, e^{-iωt}).
+    ``omega = inf`` is solved too (A∞). Returns (A (n, 3, 3), B (n, 3, 3), A∞ (3, 3)).
+    """
+    import capytaine as cpt
+
+    logging.getLogger("capytaine").setLevel(logging.ERROR)
+    mesh = cpt.Mesh(vertices, faces, name="hull")
+    lid_part = cpt.Mesh(*lid_mesh, name="lid") if (lid and lid_mesh is not None) else None
+    for plane in planes:
+        mesh = cpt.ReflectionSymmetricMesh(half=mesh, plane=plane, name="hull")
+        if lid_part is not None:
+            lid_part = cpt.ReflectionSymmetricMesh(half=lid_part, plane=plane, name="lid")
+    if lid and lid_part is None:
+        lid_part = mesh.generate_lid(z=0.0)
+    if lid_part is not None and lid_part.nb_faces == 0:
+        lid_part = None  # fully submerged: no interior free surface
+    names = ("Heave", "Roll", "Pitch")
+    body = cpt.FloatingBody(mesh=mesh, lid_mesh=lid_part, name="hull",
+                            dofs=cpt.rigid_body_dofs(only=names, rotation_center=centre))
+    solver = cpt.BEMSolver(method="direct")
+    water_depth = np.inf if math.isinf(depth) else float(depth)
+    all_omegas = [*np.asarray(omegas, dtype=float), np.inf]
+    problems = [cpt.RadiationProblem(body=body, omega=w, radiating_dof=d, water_depth=water_depth,
+                                     rho=rho, g=g) for w in all_omegas for d in names]
+    results = solver.solve_all(problems, progress_bar=False, _display_errors=False)
+    out_a = np.full((len(all_omegas), 3, 3), np.nan)
+    out_b = np.full((len(all_omegas), 3, 3), np.nan)
+    for k, res in enumerate(results):
+        i_w, j = divmod(k, 3)
+        if hasattr(res, "exception"):
+            raise RuntimeError(f"Capytaine failed at ω = {all_omegas[i_w]:.4g} rad/s "
+                               f"({res.radiating_dof}): {res.exception}")
+        for i, name in enumerate(names):
+            out_a[i_w, i, j] = res.added_mass[name]
+            out_b[i_w, i, j] = res.radiation_damping[name]
+    return out_a[:-1], out_b[:-1], out_a[-1]
+
+
+def section_coefficients(nodes: np.ndarray, *, centre_yz, omegas, length: float,
+                         rho: float = 1000.0, g: float = 9.81):
+    """2D coefficients of a section (:mod:`floatfoam.potential.sections`) as (heave, roll, pitch)
+    matrices for the length L: heave and roll (about G) times L; pitch rows are zero."""
+    res = section_bem.radiation_coefficients_2d(nodes, [*omegas, np.inf], centre=centre_yz,
+                                                rho=rho, g=g)
+    pick = [1, 2]  # heave, roll among (sway, heave, roll)
+    a = np.zeros((len(omegas) + 1, 3, 3))
+    b = np.zeros_like(a)
+    a[:, :2, :2] = res["added_mass"][:, pick][:, :, pick] * length
+    b[:, :2, :2] = res["damping"][:, pick][:, :, pick] * length
+    return a[:-1], b[:-1], a[-1]
+
+
+def _digest(arrays: dict, scalars: dict) -> str:
+    h = hashlib.sha256()
+    for name in sorted(arrays):
+        h.update(name.encode())
+        h.update(np.ascontiguousarray(arrays[name], dtype=float).round(12).tobytes())
+    h.update(json.dumps(scalars, sort_keys=True, default=str).encode())
+    return h.hexdigest()[:24]
+
+
+def default_cache_dir() -> Path:
+    from floatfoam.case import ROOT
+
+    return ROOT / "build" / "potential"
+
+
+def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=None,
+                           cache: bool = True, cache_dir: Path | None = None
+                           ) -> RadiationCoefficients:
+    """A(ω), B(ω) and A∞ of a case's body at its equilibrium (adapter over the solvers).
+
+    Options come from the case's free-form ``[potential]`` table when present (``panels``,
+    ``omega_min``/``omega_max`` as ω√(ℓ/g), ``frequencies``), else the module defaults.
+    """
+    from floatfoam.bodies.geometry import rotation
+    from floatfoam.hydrostatics.theory import equilibrium
+
+    eq = eq or equilibrium(case)
+    opts = case.raw.get("potential", {})
+    body = case.body
+    centre = rotation(eq.heel, eq.trim) @ case.cog + np.array([0.0, 0.0, eq.z_c])
+    notes = []
+    if body.is_section:
+        panels = int(panels or opts.get("panels", section_bem.DEFAULT_PANELS))
+        nodes = bem_mesh.section_panels(body, eq.z_c, eq.heel, panels)
+        half_beam = 0.5 * float(np.ptp(nodes[:, 0]))
+        depth = math.inf
+        if math.isfinite(case.depth):
+            notes.append(f"2D section: deep-water Green function, the depth {case.depth:g} m "
+                         "is not used (valid where ω²h/g ≳ π, see the resonance values)")
+        geometry = {"polygon": body.section_polygon(), "nodes": nodes}
+        ell = half_beam
+    else:
+        panels = int(panels or opts.get("panels", bem_mesh.DEFAULT_PANELS_3D))
+        depth = case.depth
+        vertices, faces = body.surface_mesh()
+        geometry = {"vertices": vertices, "faces": faces}
+        ell = math.sqrt(eq.immersed.waterplane_area / math.pi) if eq.immersed.waterplane_area \
+            else 0.5 * body.size
+    if omegas is None:
+        omegas = frequency_grid(ell, g=case.g,
+                                omega_min_nd=float(opts.get("omega_min", OMEGA_MIN_ND)),
+                                omega_max_nd=float(opts.get("omega_max", OMEGA_MAX_ND)),
+                                count=int(opts.get("frequencies", FREQUENCIES)))
+    omegas = np.asarray(omegas, dtype=float)
+    if not body.is_section and math.isfinite(depth):
+        # Capytaine's finite-depth Green function (Delhommeau) needs kh ≥ 0.1
+        lowest = math.sqrt(case.g * MIN_KH / depth * math.tanh(MIN_KH))
+        if omegas[0] < lowest:
+            omegas = np.linspace(lowest, omegas[-1], len(omegas))
+            notes.append(f"finite depth {depth:g} m: frequencies from kh = {MIN_KH:g} "
+                         f"(ω = {lowest:.4g} rad/s), the lowest Capytaine evaluates")
+    import capytaine
+
+    from floatfoam import __version__
+
+    key = _digest({**geometry, "omegas": omegas, "centre": centre},
+                  {"z_c": round(eq.z_c, 12), "heel": round(eq.heel, 12),
+                   "trim": round(eq.trim, 12), "panels": panels, "depth": depth,
+                   "rho": case.rho, "g": case.g, "length": body.length,
+                   "section": body.is_section, "cache": CACHE_VERSION,
+                   "capytaine": capytaine.__version__, "floatfoam": __version__})
+    path = (cache_dir or default_cache_dir()) / f"{key}.npz"
+    if cache and path.is_file():
+        data = np.load(path, allow_pickle=False)
+        return _from_arrays(data, notes)
+    if body.is_section:
+        a, b, a_inf = section_coefficients(nodes, centre_yz=centre[1:], omegas=omegas,
+                                           length=body.length, rho=case.rho, g=case.g)
+        count, method, covered = len(nodes) - 1, "panel-2d", (True, True, False)
+    else:
+        vertices, faces, planes = bem_mesh.wetted_hull(body, eq.z_c, eq.heel, eq.trim, panels)
+        lid = bem_mesh.waterplane_lid(vertices, faces, planes,
+                                      bem_mesh.panel_size(vertices, faces))
+        a, b, a_inf = capytaine_coefficients(vertices, faces, centre=centre, omegas=omegas,
+                                             depth=depth, rho=case.rho, g=case.g, planes=planes,
+                                             lid_mesh=lid)
+        count, method, covered = len(faces) * 2 ** len(planes), "capytaine-3d", (True,) * 3
+        if planes:
+            method += f" (symmetric about {' and '.join(planes)})"
+    arrays = {"omega": omegas, "added_mass": a, "damping": b, "added_mass_inf": a_inf,
+              "panels": np.array(count), "depth": np.array(depth),
+              "covered": np.array(covered), "method": np.array(method)}
+    if cache:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(".tmp.npz")
+        np.savez(tmp, **arrays)
+        tmp.replace(path)
+    return _from_arrays(arrays, notes)
+
+
+def _from_arrays(data, notes) -> RadiationCoefficients:
+    return RadiationCoefficients(
+        omega=np.asarray(data["omega"]), added_mass=np.asarray(data["added_mass"]),
+        damping=np.asarray(data["damping"]), added_mass_inf=np.asarray(data["added_mass_inf"]),
+        method=str(data["method"]), panels=int(data["panels"]), depth=float(data["depth"]),
+        covered=tuple(bool(x) for x in np.asarray(data["covered"])), notes=tuple(notes))
+
+
+def potential_summary(case, *, coefficients: RadiationCoefficients | None = None,
+                      **kw) -> dict:
+    """Natural periods with added mass and radiation damping ratios of a case.
+
+    For each degree of freedom i that oscillates (positive stiffness; Le Barbier's verdict for
+    roll and pitch), uncoupled: ω_n² = C_ii / (M_ii + A_ii(ω_n)) and
+    ζ = B_ii(ω_n) / (2 ω_n (M_ii + A_ii(ω_n))) (:mod:`floatfoam.potential.resonance`). Keys
+    ``<dof>_period`` (s), ``<dof>_damping_ratio``, ``<dof>_added_mass`` and
+    ``<dof>_radiation_damping`` (SI, about G) for heave, roll and pitch, None where the DoF does
+    not oscillate or is not covered (pitch of a 2D section); plus the undamped period without
+    added mass (``<dof>_period_no_added_mass``), A∞ and what was solved.
+    """
+    from floatfoam.bodies.geometry import rotation
+    from floatfoam.hydrostatics.theory import equilibrium, stiffness_matrix, verdict
+    from floatfoam.potential.resonance import damping_ratio, mass_matrix, natural_frequency
+
+    eq = equilibrium(case)
+    coef = coefficients or radiation_coefficients(case, eq, **kw)
+    stiffness = stiffness_matrix(case, eq)
+    mass = mass_matrix(case.mass, case.gyradius, rotation(eq.heel, eq.trim))
+    rgv = case.rho * case.g * eq.immersed.volume
+    oscillates = [stiffness[0, 0] > 0.0] + [
+        verdict(stiffness[i, i] / rgv, case.body.size, eq.immersed.exact) == "oscillates"
+        for i in (1, 2)]
+    out = {"case": case.name, "method": coef.method, "panels": coef.panels,
+           "depth": None if math.isinf(coef.depth) else coef.depth,
+           "frequencies": {"min": float(coef.omega[0]), "max": float(coef.omega[-1]),
+                           "count": int(len(coef.omega))},
+           "section_length": case.body.length, "notes": list(coef.notes)}
+    for i, dof in enumerate(DOFS):
+        keys = ("period", "damping_ratio", "added_mass", "radiation_damping",
+                "natural_frequency", "period_no_added_mass")
+        out.update({f"{dof}_{k}": None for k in keys})
+        if not oscillates[i]:
+            continue
+        out[f"{dof}_period_no_added_mass"] = 2 * math.pi * math.sqrt(mass[i, i] / stiffness[i, i])
+        if not coef.covered[i]:
+            continue
+        a_ii, b_ii = coef.added_mass[:, i, i], coef.damping[:, i, i]
+        omega_n, inside = natural_frequency(mass[i, i], stiffness[i, i], coef.omega, a_ii)
+        if not inside:
+            out["notes"].append(f"{dof}: ω_n = {omega_n:.4g} rad/s is outside the solved "
+                                "frequencies; A and B held at their end values")
+        w = min(max(omega_n, coef.omega[0]), coef.omega[-1])
+        a_n = float(np.interp(w, coef.omega, a_ii))
+        b_n = float(np.interp(w, coef.omega, b_ii))
+        out.update({f"{dof}_period": 2 * math.pi / omega_n,
+                    f"{dof}_natural_frequency": omega_n,
+                    f"{dof}_added_mass": a_n, f"{dof}_radiation_damping": b_n,
+                    f"{dof}_damping_ratio": damping_ratio(mass[i, i], omega_n, a_n, b_n)})
+        if math.isfinite(case.depth) and coef.method == "panel-2d":
+            out["notes"].append(f"{dof}: ω²h/g = {omega_n**2 * case.depth / case.g:.3g} at "
+                                "resonance (deep water holds within 0.4 % above π)")
+    for i, j in ((0, 1), (0, 2), (1, 2)):
+        if coef.covered[i] and coef.covered[j]:
+            ratios = [abs(m[i, j]) / math.sqrt(abs(m[i, i] * m[j, j]) or 1.0)
+                      for m in (stiffness, coef.added_mass_inf + mass)]
+            if max(ratios) > COUPLING_NOTE:
+                out["notes"].append(f"{DOFS[i]}–{DOFS[j]} coupling {max(ratios):.0%} (stiffness "
+                                    "or inertia): the periods above are uncoupled")
+    out["added_mass_inf"] = coef.added_mass_inf.tolist()
+    out["stiffness"] = stiffness.tolist()
+    out["mass_matrix"] = mass.tolist()
+    return out
