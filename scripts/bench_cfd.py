@@ -13,8 +13,9 @@ import subprocess
 import sys
 import time
 
-from floatfoam.case import ROOT, load_case
+from floatfoam.case import load_case
 from floatfoam.foam.driver import run_case
+from floatfoam.layout import ROOT, build_dir
 
 
 def main() -> int:
@@ -27,7 +28,7 @@ def main() -> int:
     for level in args.levels:
         for ranks in args.ranks:
             case = load_case("cylinder_heave", [f"run.end_time={args.end_time}"])
-            build = ROOT / "build" / "bench" / f"np{ranks}"
+            build = build_dir() / "bench" / f"np{ranks}"
             t0 = time.perf_counter()
             result = run_case(case, level, ranks, force=True, build_dir=build)
             wall = time.perf_counter() - t0
@@ -38,7 +39,7 @@ def main() -> int:
                          "wall_per_simulated_s": round(wall / args.end_time, 1)})
     sha = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
                          text=True).stdout.strip()
-    out = ROOT / "build" / "bench" / "cfd.json"
+    out = build_dir() / "bench" / "cfd.json"
     out.write_text(json.dumps({"git": sha, "date": time.strftime("%Y-%m-%d %H:%M UTC",
                                                                    time.gmtime()),
                                "machine": platform.machine(), "rows": rows}, indent=2))

@@ -17,9 +17,9 @@ import subprocess
 import sys
 import time
 from datetime import UTC, datetime
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from floatfoam.layout import ROOT, build_dir, list_cases
+
 CHILD = """
 import json, time
 from floatfoam.case import load_case
@@ -48,8 +48,7 @@ def main() -> int:
     parser.add_argument("cases", nargs="*", help="case names (default: all in cases/)")
     parser.add_argument("--threads", type=int, default=1, choices=(1, 2))
     args = parser.parse_args()
-    cases = args.cases or sorted(p.parent.name for p in (ROOT / "cases").glob("*/case.toml")
-                                 if not p.parent.name.startswith("_"))
+    cases = args.cases or [folder.name for folder in list_cases()]
     env = {**os.environ, "OMP_NUM_THREADS": str(args.threads),
            "OPENBLAS_NUM_THREADS": str(args.threads), "MKL_NUM_THREADS": str(args.threads)}
     python = ROOT / ".venv" / "bin" / "python"
@@ -74,7 +73,7 @@ def main() -> int:
              "capytaine": capytaine.__version__, "numpy": numpy.__version__,
              "python": sys.version.split()[0], "threads": args.threads,
              "cpus": os.cpu_count(), "load_average": os.getloadavg(), "results": rows}
-    target = ROOT / "build" / "bench" / "potential.json"
+    target = build_dir() / "bench" / "potential.json"
     target.parent.mkdir(parents=True, exist_ok=True)
     target.write_text(json.dumps(stamp, indent=2))
     print(f"→ {target}")

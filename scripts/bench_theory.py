@@ -8,16 +8,15 @@ import statistics
 import subprocess
 import sys
 import time
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from floatfoam.layout import ROOT, list_cases
+
 REPEAT = 3
 
 
 def main() -> int:
     exe = ROOT / ".venv" / "bin" / "floatfoam"
-    cases = sorted(p.parent.name for p in (ROOT / "cases").glob("*/case.toml")
-                   if not p.parent.name.startswith("_"))
+    cases = [folder.name for folder in list_cases()]
     print(f"{'case':<24} {'best (s)':>9} {'median (s)':>11}")
     for name in cases:
         times = []

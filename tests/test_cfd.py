@@ -16,8 +16,9 @@ from floatfoam.analysis.decay import analyse_decay, decay_dict
 from floatfoam.case import load_case
 from floatfoam.foam.driver import run_case
 from floatfoam.foam.postproc import max_speed
-from floatfoam.foam.runner import RunError, step_done
+from floatfoam.foam.runner import RunError
 from floatfoam.hydrostatics.theory import theory_summary
+from floatfoam.layout import step_done
 from floatfoam.motion import dof_series, read_motion
 
 pytestmark = pytest.mark.openfoam

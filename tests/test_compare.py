@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import csv
 import math
-import sys
 import types
 from pathlib import Path
 
@@ -25,7 +24,7 @@ from floatfoam.analysis.compare import (
     write_comparison,
 )
 from floatfoam.errors import InputError
-from floatfoam.foam.runner import mark_done
+from floatfoam.layout import mark_done
 from floatfoam.motion import write_motion
 
 PERIOD, ZETA = 0.63, 0.15  # synthetic "CFD" record: damped period (s) and damping ratio
@@ -57,15 +56,18 @@ REFERENCE = {"heave_period": {"value": 0.60, "uncertainty": 0.01, "source": "Ito
 
 
 @pytest.fixture
-def potential(monkeypatch):
-    module = types.ModuleType("floatfoam.potential.radiation")
-    module.potential_summary = lambda case: {"heave_period": 0.62, "heave_damping_ratio": 0.10}
-    monkeypatch.setitem(sys.modules, "floatfoam.potential.radiation", module)
+def potential():
+    """A stand-in potential-flow source."""
+    return lambda case: {"heave_period": 0.62, "heave_damping_ratio": 0.10}
 
 
 @pytest.fixture
-def no_potential(monkeypatch):
-    monkeypatch.setitem(sys.modules, "floatfoam.potential.radiation", None)  # import raises ImportError
+def no_potential():
+    """A potential-flow source whose module cannot be imported."""
+    def unavailable(case):
+        raise ImportError("No module named 'capytaine'")
+
+    return unavailable
 
 
 def write_run(build, case, level, t, **columns):
@@ -83,7 +85,8 @@ def test_full_table_against_reference(tmp_path, potential):
     case = fake_case(tmp_path, reference=REFERENCE)
     t = np.arange(0.0, 3.0, 2e-3)
     write_run(tmp_path / "build", case.name, "coarse", t, z=synthetic_decay(t, 0.0254, -0.001))
-    comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY)
+    comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY,
+                              potential=potential)
     rows = rows_by_source(comparison)
     assert list(rows) == ["memoir (reconstructed)", "linear theory (exact)", "potential flow",
                           "CFD coarse", "reference"]
@@ -107,7 +110,8 @@ def test_markdown_and_csv(tmp_path, potential):
     t = np.arange(0.0, 3.0, 2e-3)
     write_run(tmp_path / "build", case.name, "fine", t, z=synthetic_decay(t, 0.0254, -0.001))
     write_run(tmp_path / "build", case.name, "coarse", t, z=synthetic_decay(t, 0.0254, -0.001))
-    comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY)
+    comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY,
+                              potential=potential)
     md_path, csv_path = write_comparison(comparison, tmp_path / "out")
     text = md_path.read_text()
     assert "| heave | CFD coarse | 0.63 |" in text
@@ -124,7 +128,8 @@ def test_without_reference_differences_are_to_theory(tmp_path, no_potential):
     case = fake_case(tmp_path)
     t = np.arange(0.0, 3.0, 2e-3)
     write_run(tmp_path / "build", case.name, "coarse", t, z=synthetic_decay(t, 0.0254, -0.001))
-    comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY)
+    comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY,
+                              potential=no_potential)
     rows = rows_by_source(comparison)
     assert "potential flow" not in rows
     assert any(note.startswith("potential flow: not available") for note in comparison.notes)
@@ -141,7 +146,8 @@ def test_roll_record_in_degrees(tmp_path, no_potential):
     t = np.arange(0.0, 6.0, 5e-3)
     roll = synthetic_decay(t, 10.0, 0.5, period=1.3, zeta=0.05)  # degrees, as in the file
     write_run(tmp_path / "build", case.name, "coarse", t, roll=roll)
-    comparison = compare_case(case, build_dir=tmp_path / "build", theory=theory)
+    comparison = compare_case(case, build_dir=tmp_path / "build", theory=theory,
+                              potential=no_potential)
     assert excited_dofs(case) == ["roll"]
     cfd = rows_by_source(comparison, "roll")["CFD coarse"]
     assert cfd["period"] == pytest.approx(1.3, rel=1e-6)
@@ -159,7 +165,8 @@ def test_bad_record_gives_a_failed_row_not_a_missing_one(tmp_path, no_potential)
     short = t[t < 0.5]
     write_run(tmp_path / "build", case.name, "medium", short,
               z=synthetic_decay(short, 0.0254, -0.001))
-    comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY)
+    comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY,
+                              potential=no_potential)
     rows = rows_by_source(comparison)
     assert rows["CFD coarse"]["period"] is None
     assert "analysis failed: z: non-finite value nan at sample 200" in rows["CFD coarse"]["note"]
@@ -168,7 +175,8 @@ def test_bad_record_gives_a_failed_row_not_a_missing_one(tmp_path, no_potential)
 
 
 def test_no_run_yet_is_noted(tmp_path, no_potential):
-    comparison = compare_case(fake_case(tmp_path), build_dir=tmp_path / "build", theory=THEORY)
+    comparison = compare_case(fake_case(tmp_path), build_dir=tmp_path / "build", theory=THEORY,
+                              potential=no_potential)
     assert [r["source"] for r in comparison.rows] == ["memoir (reconstructed)",
                                                       "linear theory (exact)"]
     assert any(note.startswith("CFD: no run yet") for note in comparison.notes)

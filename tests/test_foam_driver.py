@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from floatfoam import layout
 from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.errors import InputError
@@ -78,7 +79,7 @@ def test_prepare_refuses_resumes_and_forces(tmp_path, case):
     assert driver.prepare(case, "coarse", 1, False, tmp_path)[1]  # unfinished: resume
     with pytest.raises(InputError, match="--force"):
         driver.prepare(case, "coarse", 2, False, tmp_path)  # other --np
-    runner.mark_done(run_dir, "finished")
+    layout.mark_done(run_dir, "finished")
     assert driver.prepare(case, "coarse", 1, False, tmp_path)[2]  # finished: reuse, no run
     other = load_case("cylinder_heave", ['run.solver="/usr/bin/interFoam"', "run.end_time=2.0"])
     with pytest.raises(InputError, match="finished run"):
@@ -98,7 +99,7 @@ def test_prepare_refuses_resumes_and_forces(tmp_path, case):
                                           ("mesh.square_half_size=0.05", "mesh.square_half_size")])
 def test_bad_run_input_exit_2_before_anything_is_written(capsys, monkeypatch, tmp_path,
                                                          setting, key):
-    monkeypatch.setattr(driver, "ROOT", tmp_path)
+    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path / "build"))
     args = ["run", "cylinder_heave", "--level", "medium", "--set", setting, "--set",
             'run.solver="/usr/bin/interFoam"']
     assert main(args) == 2

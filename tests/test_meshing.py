@@ -9,15 +9,15 @@ import pytest
 
 from floatfoam.bodies.geometry import mesh_volume, open_edges
 from floatfoam.bodies.surfaces import stl_body
-from floatfoam.case import CASES_DIR, load_case
+from floatfoam.case import load_case
 from floatfoam.errors import InputError
+from floatfoam.layout import list_cases
 from floatfoam.meshing import body_surface, levels
 from floatfoam.meshing.domains import build_domain
 from floatfoam.meshing.planar import progression
 from floatfoam.meshing.volume_report import discrete_volume_report
 
-CASES = sorted(p.parent.name for p in CASES_DIR.glob("*/case.toml")
-               if not p.parent.name.startswith("_"))
+CASES = [folder.name for folder in list_cases()]
 R = math.sqrt(2)  # the default refinement ratio
 
 

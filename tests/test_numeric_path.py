@@ -10,6 +10,7 @@ import pytest
 from floatfoam.bodies.geometry import icosphere
 from floatfoam.bodies.shapes import Box, ConicCylinder, Ellipsoid, EllipticCylinder, MeshBody
 from floatfoam.bodies.surfaces import implicit_body, stl_body
+from floatfoam.hydrostatics import closed_forms
 from floatfoam.hydrostatics.immersion import immersed, mesh_immersed
 
 TOL = 5e-3  # the 0.5 % at the default resolution
@@ -38,7 +39,7 @@ def assert_close(num, ref, size):
 # Every (body, attitude) with a closed form: ellipses and ellipsoids at any attitude, the
 # other sections upright.
 WITH_CLOSED_FORM = [(name, att) for name, body in BODIES.items() for att in ATTITUDES
-                    if body.closed_form(*att) is not None]
+                    if closed_forms.for_body(body, *att) is not None]
 
 
 @pytest.mark.parametrize("name, attitude", WITH_CLOSED_FORM)

@@ -10,17 +10,16 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 import types
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from floatfoam.analysis.report import build_report, case_folders
+from floatfoam.analysis.report import Sources, build_report
 from floatfoam.cli import report as report_command
 from floatfoam.errors import InputError
-from floatfoam.foam.runner import mark_done
+from floatfoam.layout import list_cases, mark_done
 from floatfoam.motion import write_motion
 
 PERIOD, ZETA = 0.63, 0.15  # of the synthetic heave record
@@ -45,8 +44,10 @@ def make_tree(tmp_path):
     return cases, build
 
 
-def fake_modules(monkeypatch, cases_dir):
-    def load_case(path, overrides=()):
+def fake_sources(monkeypatch):
+    """Stand-in case loader and theory (no potential flow), handed to the report; the report
+    command is made to use them too."""
+    def load_case(path):
         folder = Path(path)
         if folder.name == "broken":
             raise InputError("body.radius = -1: valid is a number > 0")
@@ -67,25 +68,20 @@ def fake_modules(monkeypatch, cases_dir):
                 "verdict_roll": "neutral", "verdict_pitch": "oscillates",
                 "equilibrium": {"z_G": 0.0, "heel": 0.0, "trim": 0.0}, "memoir": {}}
 
-    case_module = types.ModuleType("floatfoam.case")
-    case_module.load_case, case_module.CASES_DIR = load_case, cases_dir
-    case_module.ROOT = cases_dir.parent
-    theory_module = types.ModuleType("floatfoam.hydrostatics.theory")
-    theory_module.theory_summary = theory_summary
-    monkeypatch.setitem(sys.modules, "floatfoam.case", case_module)
-    monkeypatch.setitem(sys.modules, "floatfoam.hydrostatics.theory", theory_module)
-    monkeypatch.setitem(sys.modules, "floatfoam.potential.radiation", None)  # not available
+    sources = Sources(load=load_case, theory=theory_summary, potential=None)
+    monkeypatch.setattr(Sources, "default", classmethod(lambda cls, **kw: sources))
+    return sources
 
 
 def test_case_folders_skip_underscore(tmp_path):
     cases, _ = make_tree(tmp_path)
-    assert [p.name for p in case_folders(cases)] == ["box", "broken", "cyl"]
+    assert [p.name for p in list_cases(cases)] == ["box", "broken", "cyl"]
 
 
 def test_report_gathers_theory_and_finished_runs(tmp_path, monkeypatch):
     cases, build = make_tree(tmp_path)
-    fake_modules(monkeypatch, cases)
-    html_path = build_report(cases_dir=cases, build_dir=build)
+    sources = fake_sources(monkeypatch)
+    html_path = build_report(cases_dir=cases, build_dir=build, sources=sources)
     out = build / "report"
     assert html_path == out / "index.html"
     md = (out / "index.md").read_text()
@@ -109,8 +105,9 @@ def test_report_gathers_theory_and_finished_runs(tmp_path, monkeypatch):
 
 def test_report_html_is_self_contained(tmp_path, monkeypatch):
     cases, build = make_tree(tmp_path)
-    fake_modules(monkeypatch, cases)
-    html = build_report(cases_dir=cases, build_dir=build, out_dir=tmp_path / "r").read_text()
+    sources = fake_sources(monkeypatch)
+    html = build_report(cases_dir=cases, build_dir=build, out_dir=tmp_path / "r",
+                        sources=sources).read_text()
     assert html.startswith("<!DOCTYPE html>") and html.rstrip().endswith("</html>")
     assert "<script" not in html and "http" not in html  # no external resources
     assert html.count("<table>") == html.count("</table>") == 5  # summary + 2 per loaded case
@@ -118,7 +115,7 @@ def test_report_html_is_self_contained(tmp_path, monkeypatch):
 
 def test_report_command_and_bad_cases_dir(tmp_path, monkeypatch, capsys):
     cases, build = make_tree(tmp_path)
-    fake_modules(monkeypatch, cases)
+    sources = fake_sources(monkeypatch)
     parser = argparse.ArgumentParser()
     report_command.register(parser.add_subparsers())
     args = parser.parse_args(["report", "--cases", str(cases), "--build", str(build),
@@ -126,7 +123,7 @@ def test_report_command_and_bad_cases_dir(tmp_path, monkeypatch, capsys):
     assert args.func(args) == 0
     assert str(tmp_path / "out" / "index.html") in capsys.readouterr().out
     with pytest.raises(InputError, match="no case folder with a case.toml"):
-        build_report(cases_dir=tmp_path / "empty", build_dir=build)
+        build_report(cases_dir=tmp_path / "empty", build_dir=build, sources=sources)
 
 
 CASE_TOML = """
@@ -154,7 +151,8 @@ def test_report_with_real_theory(tmp_path):
     write_motion(build / "cyl" / "medium" / "motion.csv", t, z=synthetic_decay(t))
     mark_done(build / "cyl" / "medium", "finished")
     md = build_report(cases_dir=cases, build_dir=build,
-                      include_potential=False).with_suffix(".md").read_text()
+                      sources=Sources.default(include_potential=False)
+                      ).with_suffix(".md").read_text()
     assert "## cyl: Half-immersed cylinder" in md
     assert "| draft T | 0.0762 |" in md  # half immersed: the draft is the radius
     assert "| heave | linear theory (exact) |" in md and "| heave | CFD medium | 0.63 |" in md

@@ -16,11 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam.bodies import shapes as bodies
-from floatfoam.errors import InputError
-
-ROOT = Path(__file__).resolve().parents[2]
-CASES_DIR = ROOT / "cases"
+from floatfoam.bodies import shapes
+from floatfoam.dofs import RELEASE_KEYS
+from floatfoam.errors import InputError, number
+from floatfoam.layout import CASES_DIR, list_cases
 
 SHAPES = {
     "circular_cylinder": ("radius", "length"),
@@ -43,7 +42,7 @@ SCHEMA = {
              *{k for keys in OPTIONAL_BODY.values() for k in keys}},
     "mass": {"mass", "density", "cog", "gyradius"},
     "fluid": {"rho", "nu", "g", "depth", "rho_air", "nu_air"},
-    "release": {"heave", "heel", "trim"},
+    "release": set(RELEASE_KEYS),
     "reference": None,
     "domain": {"half_length", "half_width", "depth", "air_height", "band", "thickness"},
     "mesh": None,
@@ -54,7 +53,7 @@ SCHEMA = {
 }
 DEFAULTS = {
     "fluid": {"rho": 1000.0, "nu": 1.0e-6, "g": 9.81, "rho_air": 1.0, "nu_air": 1.48e-5},
-    "release": {"heave": 0.0, "heel": 0.0, "trim": 0.0},
+    "release": dict.fromkeys(RELEASE_KEYS, 0.0),
     "mass": {"cog": [0.0, 0.0, 0.0]},
 }
 
@@ -66,7 +65,7 @@ class Case:
     name: str
     path: Path
     raw: dict
-    body: bodies.Body
+    body: shapes.Body
     mass: float
     cog: np.ndarray
     gyradius: np.ndarray
@@ -94,8 +93,7 @@ def case_dir(name_or_path: str) -> Path:
             return folder.resolve()
     if candidate.name == "case.toml" and candidate.is_file():
         return candidate.parent.resolve()
-    names = sorted(p.parent.name for p in CASES_DIR.glob("*/case.toml")
-                   if not p.parent.name.startswith("_"))
+    names = [folder.name for folder in list_cases()]
     raise InputError(f"case {name_or_path!r} not found; valid are a folder with a case.toml "
                      f"or one of: {', '.join(names)}")
 
@@ -158,12 +156,7 @@ def _check_tables(raw: dict) -> None:
 def _number(cfg: dict, table: str, key: str, *, positive: bool = True) -> float:
     if key not in cfg[table]:
         raise InputError(f"{table}.{key} is missing; it is required here")
-    value = cfg[table][key]
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise InputError(f"{table}.{key} = {value!r}: valid is a finite number")
-    if positive and value <= 0:
-        raise InputError(f"{table}.{key} = {value!r}: valid is a number > 0")
-    return float(value)
+    return number(cfg[table][key], f"{table}.{key}", minimum=0.0 if positive else None)
 
 
 def _vector(cfg: dict, table: str, key: str, *, positive: bool = False) -> np.ndarray:
@@ -177,7 +170,7 @@ def _vector(cfg: dict, table: str, key: str, *, positive: bool = False) -> np.nd
     return np.array(value, dtype=float)
 
 
-def make_body(cfg: dict, folder: Path) -> bodies.Body:
+def make_body(cfg: dict, folder: Path) -> shapes.Body:
     """Build the body of the [body] table."""
     shape = cfg["body"].get("shape")
     if shape not in SHAPES:
@@ -192,12 +185,12 @@ def make_body(cfg: dict, folder: Path) -> bodies.Body:
         return _number(cfg, "body", key, positive=positive)
 
     if shape == "circular_cylinder":
-        return bodies.EllipticCylinder(num("radius"), num("radius"), num("length"))
+        return shapes.EllipticCylinder(num("radius"), num("radius"), num("length"))
     if shape == "elliptic_cylinder":
-        return bodies.EllipticCylinder(num("half_beam"), num("half_height"), num("length"))
+        return shapes.EllipticCylinder(num("half_beam"), num("half_height"), num("length"))
     if shape == "parabolic_cylinder":
         half_beam, height = num("half_beam"), num("height")
-        return bodies.ConicCylinder(half_beam**2 / height, 0.0, height, num("length"))
+        return shapes.ConicCylinder(half_beam**2 / height, 0.0, height, num("length"))
     if shape == "conic_cylinder":
         return _conic(num("n"), num("m", positive=False), num("height"), num("length"))
     if shape == "box":
@@ -206,12 +199,12 @@ def make_body(cfg: dict, folder: Path) -> bodies.Body:
         if not 0.0 <= radius <= min(beam / 2, height):
             raise InputError(f"body.bilge_radius = {radius!r}: valid is 0 ≤ r ≤ "
                              f"min(beam/2, height) = {min(beam / 2, height):g}")
-        return bodies.Box(beam, height, num("length"), radius)
+        return shapes.Box(beam, height, num("length"), radius)
     if shape == "sphere":
         r = num("radius")
-        return bodies.Ellipsoid([r, r, r])
+        return shapes.Ellipsoid([r, r, r])
     if shape == "ellipsoid":
-        return bodies.Ellipsoid(_vector(cfg, "body", "semi_axes", positive=True))
+        return shapes.Ellipsoid(_vector(cfg, "body", "semi_axes", positive=True))
     from floatfoam.bodies import surfaces
 
     if shape == "implicit":
@@ -224,15 +217,15 @@ def make_body(cfg: dict, folder: Path) -> bodies.Body:
     return surfaces.stl_body(folder / str(cfg["body"]["path"]), scale)
 
 
-def _conic(n: float, m: float, height: float, length: float) -> bodies.Body:
+def _conic(n: float, m: float, height: float, length: float) -> shapes.Body:
     if m < 0:
         full = -n / m
         if height > full * (1 + 1e-12):
             raise InputError(f"body.height = {height:g}: valid for this ellipse (m < 0) is "
                              f"0 < height ≤ −n/m = {full:g}")
         if height >= full * (1 - 1e-12):  # the whole ellipse
-            return bodies.EllipticCylinder(n / (2 * math.sqrt(-m)), full / 2, length)
-    return bodies.ConicCylinder(n, m, height, length)
+            return shapes.EllipticCylinder(n / (2 * math.sqrt(-m)), full / 2, length)
+    return shapes.ConicCylinder(n, m, height, length)
 
 
 def _build(folder: Path, cfg: dict) -> Case:
@@ -249,12 +242,12 @@ def _build(folder: Path, cfg: dict) -> Case:
         raise InputError("mass.gyradius is missing; valid is [kx, ky, kz] in m, the radii of "
                          "gyration about axes through G")
     gyradius = _vector(cfg, "mass", "gyradius", positive=True)
-    release = {k: _number(cfg, "release", k, positive=False) for k in ("heave", "heel", "trim")}
+    release = {k: _number(cfg, "release", k, positive=False) for k in RELEASE_KEYS}
     return Case(name=folder.name, path=folder, raw=cfg, body=body, mass=mass, cog=cog,
                 gyradius=gyradius, depth=float(depth), release=release, **fluid)
 
 
-def _mass(cfg: dict, body: bodies.Body, rho: float) -> float:
+def _mass(cfg: dict, body: shapes.Body, rho: float) -> float:
     given = [k for k in ("mass", "density") if k in cfg["mass"]]
     if len(given) != 1:
         raise InputError("[mass] needs exactly one of mass.mass (kg) or mass.density (kg/m³)")

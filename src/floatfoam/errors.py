@@ -7,3 +7,19 @@ class InputError(ValueError):
     The message is one line naming the parameter, its value and what would be valid.
     The CLI prints it without a traceback and exits with code 2.
     """
+
+
+def number(value, name: str, *, minimum: float | None = None, integer: bool = False) -> float:
+    """``value`` as a float if it is a finite number (not a boolean), greater than ``minimum``
+    when one is given and whole when ``integer``; else an InputError naming ``name``, the value
+    and what is valid. The one number check of every input (case files, --set, options)."""
+    import math
+
+    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    ok = ok and (minimum is None or value > minimum) and (not integer or value == int(value))
+    if not ok:
+        kind = ("a whole number" if integer else
+                "a finite number" if minimum is None else "a number")
+        bound = "" if minimum is None else f" > {minimum:g}"
+        raise InputError(f"{name} = {value!r}: valid is {kind}{bound}")
+    return int(value) if integer else float(value)

@@ -13,12 +13,10 @@ from pathlib import Path
 
 import numpy as np
 
+from floatfoam.dofs import dof as dof_named
 from floatfoam.errors import InputError
 
 MOTION_COLUMNS = ("time", "x", "y", "z", "roll", "pitch", "yaw", "u", "v", "w", "p", "q", "r")
-
-#: Degree of freedom -> (column of motion.csv, True when the column is an angle in degrees).
-DOF_COLUMNS = {"heave": ("z", False), "roll": ("roll", True), "pitch": ("pitch", True)}
 
 
 def motion_path(run_dir_or_csv: str | Path) -> Path:
@@ -64,21 +62,18 @@ def read_motion(path: str | Path) -> dict[str, np.ndarray]:
 
 def dof_series(motion: dict[str, np.ndarray], dof: str) -> tuple[np.ndarray, np.ndarray]:
     """Time (s) and one degree of freedom (m for heave, radians for roll and pitch)."""
-    if dof not in DOF_COLUMNS:
-        raise InputError(f"dof = {dof!r}; valid: {', '.join(DOF_COLUMNS)}")
-    column, is_angle = DOF_COLUMNS[dof]
+    entry = dof_named(dof)
+    column = entry.column
     if column not in motion:
         raise InputError(f"motion series: no column {column!r} for dof {dof}; "
                          f"columns: {','.join(motion)}")
-    value = motion[column] * (math.pi / 180.0 if is_angle else 1.0)
-    return motion["time"], value
+    return motion["time"], motion[column] * (math.pi / 180.0 if entry.is_angle else 1.0)
 
 
 def file_unit(dof: str) -> tuple[float, str]:
     """Scale from code units to file units and the unit's name: (180/π, 'deg') for angles."""
-    if DOF_COLUMNS[dof][1]:
-        return 180.0 / math.pi, "deg"
-    return 1.0, "m"
+    entry = dof_named(dof)
+    return entry.file_scale, entry.unit
 
 
 def write_motion(path: str | Path, time, **columns) -> Path:

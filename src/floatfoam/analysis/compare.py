@@ -21,16 +21,15 @@ from __future__ import annotations
 
 import csv
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from floatfoam import dofs, layout
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.errors import InputError
-from floatfoam.motion import DOF_COLUMNS, dof_series, file_unit, read_motion
+from floatfoam.motion import dof_series, file_unit, read_motion
 
-DOFS = ("heave", "roll", "pitch")
-RELEASE_KEYS = {"heave": "heave", "roll": "heel", "pitch": "trim"}
-LEVEL_ORDER = ("coarse", "medium", "fine", "finer", "finest")
 CSV_FIELDS = ("case", "dof", "source", "period", "period_lo", "period_hi", "damping_ratio",
               "damping_lo", "damping_hi", "period_rel_diff", "damping_rel_diff", "basis",
               "note")
@@ -61,23 +60,18 @@ def excited_dofs(case, reference: dict | None = None) -> list[str]:
     """DoFs the case releases from an offset, or has a reference period or damping for."""
     release = getattr(case, "release", None) or case.raw.get("release", {})
     reference = reference if reference is not None else (case.reference or {})
-    return [dof for dof in DOFS
-            if float(release.get(RELEASE_KEYS[dof], 0.0) or 0.0) != 0.0
-            or f"{dof}_period" in reference or f"{dof}_damping_ratio" in reference]
+    moved = {d.name for d in dofs.released(release)}
+    return [dof for dof in dofs.NAMES
+            if dof in moved or f"{dof}_period" in reference or f"{dof}_damping_ratio" in reference]
 
 
 def cfd_runs(case_name: str, build_dir: str | Path) -> list[tuple[str, Path]]:
     """(level, motion.csv) of every finished run of the case under ``build_dir``, coarse to
     fine: a level folder whose driver marked it finished (unfinished, diverged and moved-aside
     ``<level>.old-<date>`` runs are left out)."""
-    found = {p.parent.name: p for p in Path(build_dir, case_name).glob("*/motion.csv")
-             if p.parent.name in LEVEL_ORDER
-             and (p.parent / ".floatfoam" / "finished.done").exists()}
-
-    def order(level):
-        return (LEVEL_ORDER.index(level) if level in LEVEL_ORDER else len(LEVEL_ORDER), level)
-
-    return [(level, found[level]) for level in sorted(found, key=order)]
+    runs = ((level, layout.run_dir(case_name, level, Path(build_dir))) for level in layout.LEVELS)
+    return [(level, run / "motion.csv") for level, run in runs
+            if (run / "motion.csv").is_file() and layout.is_finished(run)]
 
 
 def reference_entry(reference: dict, key: str) -> tuple[float, float | None, str] | None:
@@ -107,17 +101,18 @@ def _row(case, dof, source, period=None, period_ci=None, zeta=None, zeta_ci=None
 def theory_equilibrium(theory: dict, dof: str) -> float | None:
     """Equilibrium of a DoF in code units (z of G in m; heel, trim in radians)."""
     eq = theory.get("equilibrium") or {}
-    key = {"heave": "z_G", "roll": "heel", "pitch": "trim"}[dof]
-    if eq.get(key) is None:
+    entry = dofs.dof(dof)
+    if eq.get(entry.equilibrium_key) is None:
         return None
-    return float(eq[key]) if dof == "heave" else math.radians(float(eq[key]))
+    value = float(eq[entry.equilibrium_key])
+    return math.radians(value) if entry.is_angle else value
 
 
 def analyse_run(path: Path, dof: str, **options) -> tuple[object, object, DecayResult]:
     """Time, value (code units) and decay analysis of one DoF of a motion CSV."""
     time, value = dof_series(read_motion(path), dof)
     return time, value, analyse_decay(time, value, units=file_unit(dof),
-                                      name=DOF_COLUMNS[dof][0], **options)
+                                      name=dofs.dof(dof).column, **options)
 
 
 def _cfd_rows(case, dof, runs, theory, options) -> tuple[list[dict], list[CfdAnalysis]]:
@@ -142,14 +137,20 @@ def _cfd_rows(case, dof, runs, theory, options) -> tuple[list[dict], list[CfdAna
     return rows, analyses
 
 
-def _potential(case, include: bool, notes: list[str]) -> dict:
-    if not include:
+def potential_flow(case) -> dict:
+    """The default potential-flow source of the comparison:
+    :func:`floatfoam.potential.radiation.potential_summary` of the case."""
+    from floatfoam.potential.radiation import potential_summary
+
+    return potential_summary(case)
+
+
+def _potential(case, source, notes: list[str]) -> dict:
+    if source is None:
         notes.append("potential flow: not requested")
         return {}
     try:
-        from floatfoam.potential.radiation import potential_summary
-
-        summary = potential_summary(case) or {}
+        summary = source(case) or {}
     except (ImportError, AttributeError) as err:
         notes.append(f"potential flow: not available ({err})")
         return {}
@@ -212,13 +213,14 @@ def _relative_differences(rows: list[dict]) -> None:
 
 
 def compare_case(case, *, build_dir: str | Path, theory: dict | None = None,
-                 include_potential: bool = True, analysis_options: dict | None = None
-                 ) -> Comparison:
+                 potential: Callable | None = potential_flow,
+                 analysis_options: dict | None = None) -> Comparison:
     """The comparison table of one case (see the module docstring for the rows).
 
     ``theory`` is :func:`~floatfoam.hydrostatics.theory.theory_summary` of the case
-    (computed when None);
-    ``analysis_options`` go to :func:`analyse_decay` (e.g. ``{"drift": True}``).
+    (computed when None); ``potential`` gives the potential-flow summary of a case (default
+    :func:`potential_flow`; None leaves potential flow out); ``analysis_options`` go to
+    :func:`analyse_decay` (e.g. ``{"drift": True}``).
     """
     if theory is None:
         from floatfoam.hydrostatics.theory import theory_summary
@@ -226,7 +228,7 @@ def compare_case(case, *, build_dir: str | Path, theory: dict | None = None,
         theory = theory_summary(case)
     reference = case.reference or {}
     comparison = Comparison(case.name)
-    potential = _potential(case, include_potential, comparison.notes)
+    potential = _potential(case, potential, comparison.notes)
     runs = cfd_runs(case.name, build_dir)
     if not runs:
         comparison.notes.append(f"CFD: no run yet (no {Path(build_dir, case.name)}/*/motion.csv)")

@@ -17,14 +17,18 @@ from __future__ import annotations
 import csv
 import datetime
 import subprocess
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 import floatfoam
+from floatfoam import dofs, layout
 from floatfoam.analysis.compare import (
     TABLE_HEADER,
     Comparison,
     compare_case,
     fmt,
+    potential_flow,
     reference_entry,
     table_rows,
     theory_equilibrium,
@@ -54,13 +58,25 @@ THEORY_ROWS = (
 )
 EQUILIBRIUM_ROWS = (("z_G", "equilibrium z of G", "m"), ("heel", "equilibrium heel", "deg"),
                     ("trim", "equilibrium trim", "deg"))
-RELEASE_UNITS = {"heave": "m", "heel": "deg", "trim": "deg"}
 
 
-def case_folders(cases_dir: str | Path) -> list[Path]:
-    """Case folders (holding a case.toml) under ``cases_dir``, skipping names starting with _."""
-    return sorted(p.parent for p in Path(cases_dir).glob("*/case.toml")
-                  if not p.parent.name.startswith("_"))
+@dataclass(frozen=True)
+class Sources:
+    """Where the report takes each case's inputs from: ``load`` (a case folder → the loaded
+    case), ``theory`` (case → theory summary) and ``potential`` (case → potential-flow summary,
+    None to leave potential flow out). :meth:`default` is the project's own."""
+
+    load: Callable
+    theory: Callable
+    potential: Callable | None
+
+    @classmethod
+    def default(cls, include_potential: bool = True) -> Sources:
+        from floatfoam.case import load_case
+        from floatfoam.hydrostatics.theory import theory_summary
+
+        return cls(load=lambda folder: load_case(str(folder)), theory=theory_summary,
+                   potential=potential_flow if include_potential else None)
 
 
 def _cell(value) -> str:
@@ -86,8 +102,7 @@ def theory_table(theory: dict) -> tuple[list[str], list[list[str]]]:
 def _overlay(case, theory: dict, dof: str) -> Overlay:
     scale, _ = file_unit(dof)
     eq = theory_equilibrium(theory, dof)
-    release_key = {"heave": "heave", "roll": "heel", "pitch": "trim"}[dof]
-    release = (getattr(case, "release", None) or {}).get(release_key)
+    release = (getattr(case, "release", None) or {}).get(dofs.dof(dof).release_key)
     reference = case.reference or {}
     period = reference_entry(reference, f"{dof}_period")
     zeta = reference_entry(reference, f"{dof}_damping_ratio")
@@ -128,8 +143,8 @@ def _intro(doc: Document, case) -> str:
     if description:
         doc.paragraph(description)
     release = getattr(case, "release", None) or {}
-    parts = [f"{k} {fmt(float(v), 'g')} {RELEASE_UNITS.get(k, '')}".strip()
-             for k, v in release.items()]
+    units = {d.release_key: d.unit for d in dofs.DOFS}
+    parts = [f"{k} {fmt(float(v), 'g')} {units.get(k, '')}".strip() for k, v in release.items()]
     doc.paragraph("Release: " + (", ".join(parts) or "none given"), note=True)
     return title
 
@@ -154,14 +169,11 @@ def _status(comparison: Comparison) -> str:
 
 
 def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
-                  include_potential: bool) -> list[str]:
+                  sources: Sources) -> list[str]:
     """Add one case's section; return its line of the summary table."""
-    from floatfoam.case import load_case
-    from floatfoam.hydrostatics.theory import theory_summary
-
     try:
-        case = load_case(str(folder))
-        theory = theory_summary(case)
+        case = sources.load(folder)
+        theory = sources.theory(case)
     except InputError as err:
         doc.heading(f"{folder.name}: could not be loaded")
         doc.paragraph(f"error: {err}")
@@ -174,7 +186,7 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
     doc.heading("Linear hydrostatic theory", 3)
     doc.table(header, rows)
     comparison = compare_case(case, build_dir=build_dir, theory=theory,
-                              include_potential=include_potential)
+                              potential=sources.potential)
     write_comparison(comparison, case_out)
     _comparison_section(doc, comparison)
     images = _plots(case, theory, comparison, out_dir)
@@ -186,7 +198,7 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
 
 
 def _periods_cell(theory: dict) -> str:
-    parts = [f"{dof} {theory[f'{dof}_period']:.4g} s" for dof in ("heave", "roll", "pitch")
+    parts = [f"{dof} {theory[f'{dof}_period']:.4g} s" for dof in dofs.NAMES
              if theory.get(f"{dof}_period") is not None]
     return ", ".join(parts) or "—"
 
@@ -202,23 +214,22 @@ def _provenance() -> str:
 
 
 def build_report(*, cases_dir: str | Path | None = None, build_dir: str | Path | None = None,
-                 out_dir: str | Path | None = None, include_potential: bool = True) -> Path:
+                 out_dir: str | Path | None = None, sources: Sources | None = None) -> Path:
     """Write ``index.md``, ``index.html`` and the per-case files; return the HTML's path.
 
     Defaults: the repository's ``cases/`` and ``build/``, and ``<build_dir>/report``.
     """
-    from floatfoam.case import CASES_DIR, ROOT
-
-    cases_dir = Path(cases_dir or CASES_DIR)
-    build_dir = Path(build_dir or ROOT / "build")
+    sources = sources or Sources.default()
+    cases_dir = Path(cases_dir or layout.CASES_DIR)
+    build_dir = Path(build_dir or layout.build_dir())
     out_dir = Path(out_dir or build_dir / "report")
     out_dir.mkdir(parents=True, exist_ok=True)
-    folders = case_folders(cases_dir)
+    folders = layout.list_cases(cases_dir)
     if not folders:
         raise InputError(f"cases_dir = {cases_dir}: no case folder with a case.toml; valid is "
                          "the project's cases/ directory")
     body = Document("")
-    summary = [_case_section(body, folder, build_dir, out_dir, include_potential)
+    summary = [_case_section(body, folder, build_dir, out_dir, sources)
                for folder in folders]
     doc = Document("floatfoam report")
     doc.paragraph(_provenance(), note=True)

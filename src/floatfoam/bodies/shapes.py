@@ -5,7 +5,6 @@ centre of the bounding box for the primitives), x along the long axis, z up. A b
 
 * ``surface_mesh()``: a closed, outward-oriented triangle mesh (every body);
 * ``section_polygon()``: its (y, z) section, counter-clockwise (2D sections only);
-* ``closed_form(z_c, heel, trim)``: exact hydrostatics where known, else None;
 * ``contains(point)``: whether a body-frame point is inside.
 """
 
@@ -16,7 +15,6 @@ import math
 import numpy as np
 
 from floatfoam.bodies.geometry import extrude_polygon, icosphere, mesh_volume, winding_number
-from floatfoam.hydrostatics import closed_forms
 
 SECTION_POINTS = 2048  # polygon vertices of a 2D section: area error ~ (2π²/3)/N² ≈ 2e-6
 SPHERE_LEVEL = 5  # icosphere subdivisions: 20480 triangles, volume error ≈ 0.1 %
@@ -38,9 +36,6 @@ class Body:
     def keel_z(self) -> float:
         """Height of the keel (lowest point of the upright body) in the body frame."""
         return float(self.lo[2])
-
-    def closed_form(self, z_c, heel, trim):
-        return None
 
     def surface_mesh(self, resolution=None):
         raise NotImplementedError
@@ -86,11 +81,6 @@ class EllipticCylinder(SectionBody):
         self.lo = np.array([-length / 2, -half_beam, -half_height])
         self.hi = -self.lo
 
-    def closed_form(self, z_c, heel, trim):
-        if trim != 0.0:
-            return None
-        return closed_forms.ellipse_section(self.b, self.c, self.length, z_c, heel)
-
     def section_polygon(self, resolution=None):
         t = np.linspace(0.0, 2 * np.pi, resolution or SECTION_POINTS, endpoint=False)
         return np.column_stack([self.b * np.sin(t), -self.c * np.cos(t)])
@@ -118,15 +108,6 @@ class ConicCylinder(SectionBody):
     def half_width(self, x):
         return np.sqrt(np.maximum(self.n * x + self.m * x * x, 0.0))
 
-    def closed_form(self, z_c, heel, trim):
-        if heel != 0.0 or trim != 0.0:
-            return None
-        depth = min(max(self.h / 2 - z_c, 0.0), self.h)
-        i0, i1, w = closed_forms.conic_integrals(self.n, self.m, depth)
-        if depth >= self.h:
-            w = 0.0  # fully submerged: no waterplane
-        return closed_forms.upright_section(2 * i0, 2 * i1, w, self.length, self.keel_z, z_c)
-
     def section_polygon(self, resolution=None):
         k = (resolution or SECTION_POINTS) // 2
         x = self.h * np.linspace(0.0, 1.0, k) ** 2  # dense near the vertex, where w ~ √x
@@ -148,15 +129,6 @@ class Box(SectionBody):
         self.beam, self.height, self.length, self.r = beam, height, length, bilge_radius
         self.lo = np.array([-length / 2, -beam / 2, -height / 2])
         self.hi = -self.lo
-
-    def closed_form(self, z_c, heel, trim):
-        if heel != 0.0 or trim != 0.0:
-            return None
-        depth = min(max(self.height / 2 - z_c, 0.0), self.height)
-        i0, i1, w = closed_forms.box_integrals(self.beam, self.r, depth)
-        if depth >= self.height:
-            w = 0.0
-        return closed_forms.upright_section(2 * i0, 2 * i1, w, self.length, self.keel_z, z_c)
 
     def section_polygon(self, resolution=None):
         half_b, half_d, r = self.beam / 2, self.height / 2, self.r
@@ -188,9 +160,6 @@ class Ellipsoid(Body):
     def __init__(self, semi_axes):
         self.axes = np.asarray(semi_axes, dtype=float)
         self.lo, self.hi = -self.axes, self.axes.copy()
-
-    def closed_form(self, z_c, heel, trim):
-        return closed_forms.ellipsoid(self.axes, z_c, heel, trim)
 
     def surface_mesh(self, resolution=None):
         v, f = icosphere(SPHERE_LEVEL if resolution is None else resolution)

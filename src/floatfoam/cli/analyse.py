@@ -8,16 +8,15 @@ from __future__ import annotations
 
 import math
 
-from floatfoam.analysis.decay import analyse_decay, decay_dict, log_decrement_damping
+from floatfoam import dofs
 from floatfoam.cli.common import dump_json
-from floatfoam.motion import DOF_COLUMNS, dof_series, file_unit, motion_path, read_motion
 
 
 def add_arguments(parser) -> None:
     """The analyse command's arguments (shared with postprocess/analyse.py)."""
     parser.add_argument("source", metavar="RUN_DIR_OR_CSV",
                         help="a run directory holding motion.csv, or a motion CSV")
-    parser.add_argument("--dof", choices=list(DOF_COLUMNS), default="heave",
+    parser.add_argument("--dof", choices=list(dofs.NAMES), default="heave",
                         help="degree of freedom to analyse (default: heave)")
     parser.add_argument("--equilibrium", metavar="VALUE",
                         help="level the motion decays to, in file units (m, deg), or 'tail'; "
@@ -53,12 +52,15 @@ def _equilibrium(text: str | None, scale: float):
 
 
 def run(args) -> int:
+    from floatfoam.analysis.decay import analyse_decay, decay_dict
+    from floatfoam.motion import dof_series, file_unit, motion_path, read_motion
+
     path = motion_path(args.source)
     scale, unit = file_unit(args.dof)
     time, value = dof_series(read_motion(path), args.dof)
     result = analyse_decay(time, value, equilibrium=_equilibrium(args.equilibrium, scale),
                            drift=args.drift, quadratic=args.quadratic, t_start=args.start,
-                           units=(scale, unit), name=DOF_COLUMNS[args.dof][0])
+                           units=(scale, unit), name=dofs.dof(args.dof).column)
     data = {"source": str(path), **decay_dict(result, scale=scale, unit=unit, dof=args.dof)}
     if args.plot:
         from floatfoam.analysis.plots import plot_decay
@@ -75,6 +77,8 @@ def _ci(pair) -> str:
 
 def format_result(d: dict) -> str:
     """Readable summary of :func:`decay_dict` output."""
+    from floatfoam.analysis.decay import log_decrement_damping
+
     u = d["unit"]
     lines = [f"{d['source']}: {d['dof']} ({u}), model {d['model']}",
              f"mean level {d['equilibrium']:.6g} {u} ({d['equilibrium_source']}), drift "

@@ -5,13 +5,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from floatfoam.case import ROOT, load_case
+from floatfoam import dofs, layout
 from floatfoam.cli.common import add_case_arguments, dump_json
 from floatfoam.errors import InputError
-from floatfoam.potential.models import MODELS, decay_series, write_series
-
-EXCITED = (("heave", "z", 1.0), ("heel", "roll", math.pi / 180.0),
-           ("trim", "pitch", math.pi / 180.0))
+from floatfoam.potential.models import MODELS
 
 
 def register(sub) -> None:
@@ -36,12 +33,15 @@ def run(args) -> int:
         raise InputError(f"--duration {args.duration:g}: valid is a positive time in seconds")
     if args.nonlinear_restoring and args.model != "cummins":
         raise InputError("--nonlinear-restoring applies to --model cummins only")
+    from floatfoam.case import load_case
+    from floatfoam.potential.models import decay_series, write_series
+
     case = load_case(args.case, args.overrides)
     series = decay_series(case, args.model, duration=args.duration,
                           nonlinear_restoring=args.nonlinear_restoring)
     suffix = "_nonlinear_restoring" if args.nonlinear_restoring else ""
     out = Path(args.out) if args.out else \
-        ROOT / "build" / case.name / f"decay_{args.model}{suffix}.csv"
+        layout.case_build_dir(case.name) / f"decay_{args.model}{suffix}.csv"
     write_series(out, series)
     report = {"case": case.name, "model": args.model, "csv": str(out),
               "samples": int(len(series["time"])), "duration": float(series["time"][-1]),
@@ -65,9 +65,9 @@ def _analyse(case, series) -> dict:
     from floatfoam.analysis.decay import analyse_decay
 
     out = {}
-    for key, column, scale in EXCITED:
-        if case.release[key] == 0.0:
-            continue
+    for entry in dofs.released(case.release):
+        column = entry.column
+        scale = math.pi / 180.0 if entry.is_angle else 1.0
         try:
             summary = analyse_decay(series["time"], series[column] * scale).summary()
             out[column] = {"period": summary["period_mean"],

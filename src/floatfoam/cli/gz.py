@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from floatfoam.case import ROOT, load_case
+from floatfoam import layout
 from floatfoam.cli.common import add_case_arguments, dump_json
 from floatfoam.errors import InputError
-from floatfoam.hydrostatics.gz import gz_curve, plot_gz
 
 
 def register(sub) -> None:
@@ -28,9 +27,12 @@ def run(args) -> int:
         raise InputError(f"--max-angle {args.max_angle:g}: valid is 0 < DEG ≤ 180")
     if not 0.0 < args.step <= args.max_angle:
         raise InputError(f"--step {args.step:g}: valid is 0 < DEG ≤ --max-angle")
+    from floatfoam.case import load_case
+    from floatfoam.hydrostatics.gz import gz_curve, plot_gz
+
     case = load_case(args.case, args.overrides)
     curve = gz_curve(case, args.max_angle, args.step)
-    plot = Path(args.plot) if args.plot else ROOT / "build" / case.name / "gz.png"
+    plot = Path(args.plot) if args.plot else layout.case_build_dir(case.name) / "gz.png"
     plot.parent.mkdir(parents=True, exist_ok=True)
     plot_gz(curve, plot, title=f"{case.name}: righting arm")
     if args.json:

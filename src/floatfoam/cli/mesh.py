@@ -14,9 +14,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from floatfoam.case import CASES_DIR, ROOT, load_case
+from floatfoam import layout
+from floatfoam.case import load_case
 from floatfoam.cli.common import add_case_arguments, dump_json
-from floatfoam.meshing.levels import LEVELS, POSES, mesh_spec, pose
+from floatfoam.layout import LEVELS
+from floatfoam.meshing.levels import POSES, mesh_spec, pose
 
 
 def add_level_argument(parser) -> None:
@@ -88,7 +90,7 @@ def run_body(args) -> int:
     where = pose(case, args.pose, eq)
     reports = []
     for level in _levels(args.level):
-        folder = args.out or ROOT / "build" / case.name / "mesh" / level
+        folder = args.out or layout.case_build_dir(case.name) / "mesh" / level
         stem = "body" if args.pose == "body" else f"body_{args.pose}"
         written = write_body(case, mesh_spec(case, level), where, folder, stem)
         report = discrete_volume_report(case, level, equilibrium=eq)
@@ -131,15 +133,15 @@ def run_domain(args) -> int:
 
 
 def run_table(args) -> int:
+    from floatfoam.foam.meshcheck import convert_and_check
     from floatfoam.meshing.table import level_rows, markdown
 
-    names = args.cases or sorted(p.parent.name for p in CASES_DIR.glob("*/case.toml")
-                                 if not p.parent.name.startswith("_"))
+    names = args.cases or [folder.name for folder in layout.list_cases()]
     rows = []
     for name in names:
         rows += level_rows(load_case(name), domains=args.domains,
-                           check=args.check and args.domains,
-                           scratch=ROOT / "build" / "mesh_table")
+                           check=convert_and_check if args.check and args.domains else None,
+                           scratch=layout.build_dir() / "mesh_table")
     print(dump_json(rows) if args.json else markdown(rows))
     return 0
 
@@ -151,7 +153,7 @@ def script_main(prog: str, doc: str, add_arguments, run, argv=None) -> int:
     import sys
 
     from floatfoam.errors import InputError
-    from floatfoam.foam.meshcheck import MeshCheckError
+    from floatfoam.foam.runner import RunError
 
     parser = argparse.ArgumentParser(prog=prog, description=doc.strip().splitlines()[0])
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
@@ -159,7 +161,7 @@ def script_main(prog: str, doc: str, add_arguments, run, argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         return run(args)
-    except (InputError, MeshCheckError) as err:
+    except (InputError, RunError) as err:
         if args.debug:
             raise
         print(f"{prog}: error: {err}", file=sys.stderr)

@@ -4,11 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from floatfoam.case import ROOT, load_case
+from floatfoam import dofs, layout
 from floatfoam.cli.common import add_case_arguments, dump_json
 from floatfoam.errors import InputError
-
-UNITS = {"heave": ("kg", "N·s/m"), "roll": ("kg·m²", "N·m·s"), "pitch": ("kg·m²", "N·m·s")}
 
 
 def register(sub) -> None:
@@ -26,6 +24,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from floatfoam.case import load_case
     from floatfoam.hydrostatics.theory import equilibrium
     from floatfoam.potential.radiation import potential_summary, radiation_coefficients
 
@@ -38,7 +37,7 @@ def run(args) -> int:
     if args.plot is not None:
         from floatfoam.potential.plot import plot_coefficients
 
-        path = Path(args.plot) if args.plot else ROOT / "build" / case.name / "potential.png"
+        path = Path(args.plot) if args.plot else layout.case_build_dir(case.name) / "potential.png"
         summary["plot"] = str(plot_coefficients(coef, path, summary=summary,
                                                 title=f"{case.name}: radiation coefficients"))
     if args.json:
@@ -58,8 +57,8 @@ def format_summary(s: dict) -> str:
              f"frequencies {f['min']:.4g}–{f['max']:.4g} rad/s{per}", "",
              f"{'dof':<6} {'T no A (s)':>11} {'T with A (s)':>13} {'A(ω_n)':>11} "
              f"{'B(ω_n)':>11} {'ζ':>8}  units of A, B", "-" * 78]
-    for dof in ("heave", "roll", "pitch"):
-        unit_a, unit_b = UNITS[dof]
+    for entry in dofs.DOFS:
+        dof, unit_a, unit_b = entry.name, entry.inertia_unit, entry.damping_unit
         lines.append(f"{dof:<6} {_fmt(s[f'{dof}_period_no_added_mass']):>11} "
                      f"{_fmt(s[f'{dof}_period']):>13} {_fmt(s[f'{dof}_added_mass']):>11} "
                      f"{_fmt(s[f'{dof}_radiation_damping']):>11} "

@@ -22,9 +22,9 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from floatfoam.analysis.report import build_report
+    from floatfoam.analysis.report import Sources, build_report
 
     html = build_report(cases_dir=args.cases, build_dir=args.build, out_dir=args.out,
-                        include_potential=args.potential)
+                        sources=Sources.default(include_potential=args.potential))
     print(f"report: {html} (and {html.with_suffix('.md')})")
     return 0

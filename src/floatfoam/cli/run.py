@@ -4,12 +4,9 @@ from __future__ import annotations
 
 import sys
 
-from floatfoam.case import load_case
 from floatfoam.cli.common import add_case_arguments
 from floatfoam.errors import InputError
-from floatfoam.foam.driver import run_case
-from floatfoam.foam.render import LEVELS
-from floatfoam.foam.runner import RunError
+from floatfoam.layout import LEVELS
 
 
 def register(sub) -> None:
@@ -23,27 +20,33 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from floatfoam.case import load_case
+    from floatfoam.foam.driver import run_case
+    from floatfoam.foam.runner import RunError
+    from floatfoam.hydrostatics.theory import equilibrium
+
     case = load_case(args.case, args.overrides)
     if args.level not in LEVELS:
         raise InputError(f"--level {args.level!r}: valid levels are {', '.join(LEVELS)}")
+    eq = equilibrium(case)  # solved once, handed to the rendering and the summary
     try:
-        result = run_case(case, args.level, args.np, args.force)
+        result = run_case(case, args.level, args.np, args.force, equilibrium=eq)
     except RunError as err:
         print(f"floatfoam run: {err}", file=sys.stderr)
         return 1
     if result.already_finished:
         print(f"{result.run_dir} holds a finished run (use --force to run it again).")
-    print_summary(case, result)
+    print_summary(case, result, eq)
     return 0
 
 
-def print_summary(case, result) -> None:
+def print_summary(case, result, eq) -> None:
     """The motion series and its heave period beside the theory's."""
     from floatfoam.analysis.decay import analyse_decay
     from floatfoam.hydrostatics.theory import theory_summary
     from floatfoam.motion import dof_series, read_motion
 
-    theory = theory_summary(case)
+    theory = theory_summary(case, eq)
     if not result.motion_csv.exists():  # a body held still (run.static_body) has no motion
         print(f"no motion series (the body is held still); run: {result.run_dir}")
         return

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-from floatfoam.case import load_case
 from floatfoam.cli.common import add_case_arguments, dump_json
-from floatfoam.hydrostatics.theory import theory_summary
 
 ROWS = [
     ("draft", "draft", "m"),
@@ -32,6 +30,9 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from floatfoam.case import load_case
+    from floatfoam.hydrostatics.theory import theory_summary
+
     case = load_case(args.case, args.overrides)
     summary = theory_summary(case)
     if args.json:

@@ -14,12 +14,12 @@ import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
-from floatfoam.case import ROOT, Case
+from floatfoam import layout
+from floatfoam.case import Case
 from floatfoam.errors import InputError
 from floatfoam.foam import runner
-from floatfoam.foam.render import COMMON, check_settings, render, setting
-
-SOLVER = ROOT / "build" / "solver" / "bin" / "interFoam"
+from floatfoam.foam.render import check_settings, release_state, render, setting
+from floatfoam.hydrostatics.theory import Equilibrium
 
 
 @dataclass
@@ -31,16 +31,12 @@ class RunResult:
     already_finished: bool = False
 
 
-def run_dir_for(case: Case, level: str, build_dir: Path | None = None) -> Path:
-    return (build_dir or ROOT / "build") / case.name / level
-
-
 def settings_digest(case: Case, level: str) -> str:
     """Hash of what a run depends on: the case, the level, the shared dictionaries and the
     solver binary."""
     digest = hashlib.sha256(json.dumps({"case": case.raw, "level": level}, sort_keys=True,
                                        default=str).encode())
-    for path in sorted(COMMON.rglob("*")):
+    for path in sorted(layout.COMMON_DIR.rglob("*")):
         if path.is_file():
             digest.update(path.read_bytes())
     digest.update(str(solver_path(case)).encode())
@@ -49,8 +45,8 @@ def settings_digest(case: Case, level: str) -> str:
 
 def solver_path(case: Case) -> Path:
     """The interFoam to run: floatfoam's rebuilt one unless [run] solver names another."""
-    path = Path(str(case.raw.get("run", {}).get("solver", SOLVER)))
-    path = path if path.is_absolute() else ROOT / path
+    path = Path(str(case.raw.get("run", {}).get("solver", layout.SOLVER)))
+    path = path if path.is_absolute() else layout.ROOT / path
     if not path.is_file():
         raise InputError(f"run.solver = {str(path)!r} does not exist; run `make setup` to build "
                          "floatfoam's interFoam (scripts/build_solver.sh)")
@@ -60,12 +56,12 @@ def solver_path(case: Case) -> Path:
 def prepare(case: Case, level: str, np_: int, force: bool,
             build_dir: Path | None = None) -> tuple[Path, bool, bool]:
     """The run directory, whether it resumes, and whether it is already finished."""
-    run_dir = run_dir_for(case, level, build_dir)
+    run_dir = layout.run_dir(case.name, level, build_dir)
     digest = settings_digest(case, level)
-    stamp = run_dir / runner.MARKERS / "settings"
+    stamp = run_dir / layout.MARKERS / "settings"
     if run_dir.exists():
         old = (stamp.read_text().split() if stamp.exists() else []) + ["?", "?"]
-        finished = runner.step_done(run_dir, "finished")
+        finished = layout.is_finished(run_dir)
         same = old[0] == digest and old[1] == str(np_)
         if force:
             moved = runner.move_aside(run_dir)
@@ -78,38 +74,45 @@ def prepare(case: Case, level: str, np_: int, force: bool,
                              "the same settings to resume, or --force to move it aside")
         else:
             return run_dir, True, False
-    (run_dir / runner.MARKERS).mkdir(parents=True)
+    (run_dir / layout.MARKERS).mkdir(parents=True)
     stamp.write_text(f"{digest} {np_}\n")
     return run_dir, False, False
 
 
 def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = False,
-             build_dir: Path | None = None) -> RunResult:
+             build_dir: Path | None = None, *, equilibrium: Equilibrium | None = None
+             ) -> RunResult:
     """Run ``case`` at ``level`` on ``np_`` MPI ranks (see the module docstring); the run
-    directory is ``<build_dir>/<case>/<level>`` (``build/`` by default)."""
+    directory is ``<build_dir>/<case>/<level>`` (:func:`floatfoam.layout.build_dir` by
+    default). ``equilibrium`` is the case's (solved here when not given)."""
     if np_ < 1:
         raise InputError(f"--np {np_}: valid is a whole number ≥ 1")
     solver = solver_path(case)
-    check_settings(case, level)  # bad input fails here, before anything is moved or written
+    if equilibrium is None:
+        from floatfoam.hydrostatics.theory import equilibrium as solve
+
+        equilibrium = solve(case)
+    state = release_state(case, equilibrium)
+    check_settings(case, level, state)  # bad input fails here, before anything is written
     run_dir, resumed, finished = prepare(case, level, np_, force, build_dir)
     motion = run_dir / "motion.csv"
-    info_file = run_dir / runner.MARKERS / "info.json"
+    info_file = run_dir / layout.MARKERS / "info.json"
     if finished:
         return RunResult(run_dir, motion, json.loads(info_file.read_text()), False, True)
     label = f"{case.name}/{level}"
-    if not runner.step_done(run_dir, "render"):
-        info = render(case, level, run_dir, np_=np_)
+    if not layout.step_done(run_dir, "render"):
+        info = render(case, level, run_dir, state, np_=np_)
         info = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in info.items()}
         info_file.write_text(json.dumps(info, indent=2))
-        runner.mark_done(run_dir, "render")
+        layout.mark_done(run_dir, "render")
     info = json.loads(info_file.read_text())
     if resumed:
         print(f"[{label}] resuming the run in {run_dir}")
     runner.run_app(run_dir, "blockMesh", ["blockMesh"])
-    if not runner.step_done(run_dir, "fields"):
+    if not layout.step_done(run_dir, "fields"):
         shutil.rmtree(run_dir / "0", ignore_errors=True)
         shutil.copytree(run_dir / "0.orig", run_dir / "0")
-        runner.mark_done(run_dir, "fields")
+        layout.mark_done(run_dir, "fields")
     runner.run_app(run_dir, "setAlphaField", ["setAlphaField"])
     if np_ > 1:
         runner.run_app(run_dir, "decomposePar", ["decomposePar", "-force"])
@@ -121,5 +124,5 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     runner.run_solver(run_dir, [str(solver)], end_time=info["end_time"], np_=np_,
                       motion_csv=motion, limits=limits, label=label,
                       log_name="interFoam")
-    runner.mark_done(run_dir, "finished")
+    layout.mark_done(run_dir, layout.FINISHED)
     return RunResult(run_dir, motion, info, resumed)

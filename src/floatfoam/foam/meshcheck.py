@@ -9,10 +9,10 @@ and makes them all ``patch``; :func:`set_patch_types` gives them their OpenFOAM 
 from __future__ import annotations
 
 import re
-import subprocess
 from pathlib import Path
 
-from floatfoam.foam.runner import foam_env
+from floatfoam.foam.dictionaries import write_dict
+from floatfoam.foam.runner import run_app
 
 PATCH_TYPES = {  # physical group → OpenFOAM patch type
     "body": "wall",
@@ -35,25 +35,10 @@ _SYSTEM = {
 }
 
 
-
-
-class MeshCheckError(RuntimeError):
-    """gmshToFoam or checkMesh failed (message: one line and the log's path)."""
-
-
 def write_system(case_dir: Path) -> None:
     """The system/ dictionaries gmshToFoam and checkMesh read, nothing more."""
-    from foamlib import FoamFile
-
     for name, entries in _SYSTEM.items():
-        path = case_dir / "system" / name
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text("")
-        with FoamFile(path) as dictionary:
-            dictionary["FoamFile"] = {"version": 2.0, "format": "ascii", "class": "dictionary",
-                                      "object": name}
-            for key, value in entries.items():
-                dictionary[key] = value
+        write_dict(case_dir / "system" / name, entries)
 
 
 def set_patch_types(case_dir: Path, types: dict | None = None) -> dict:
@@ -89,10 +74,10 @@ def convert_and_check(msh: Path, case_dir: Path, types: dict | None = None) -> d
     """
     case_dir.mkdir(parents=True, exist_ok=True)
     write_system(case_dir)
-    _run(["gmshToFoam", "-case", str(case_dir), str(Path(msh).resolve())], case_dir,
-         "gmshToFoam")
+    run_app(case_dir, "gmshToFoam", ["gmshToFoam", str(Path(msh).resolve())], quiet=True,
+            marker=False)
     patches = set_patch_types(case_dir, types)
-    log = _run(["checkMesh", "-case", str(case_dir)], case_dir, "checkMesh", check=False)
+    log = run_app(case_dir, "checkMesh", ["checkMesh"], quiet=True, marker=False, check=False)
     result = parse_check_mesh(log.read_text())
     result.update(patches=patches, log=str(log))
     return result
@@ -116,12 +101,3 @@ def parse_check_mesh(text: str) -> dict:
         "mesh_ok": "\nMesh OK." in text,
     }
 
-
-def _run(command: list[str], case_dir: Path, name: str, check: bool = True) -> Path:
-    log = case_dir / f"log.{name}"
-    with open(log, "w") as fh:
-        done = subprocess.run(command, stdout=fh, stderr=subprocess.STDOUT,
-                              env=foam_env(), check=False)
-    if check and done.returncode != 0:
-        raise MeshCheckError(f"{name} failed (exit {done.returncode}); see {log}")
-    return log

@@ -12,18 +12,17 @@ import shutil
 from pathlib import Path
 
 import numpy as np
-from foamlib import FoamFieldFile, FoamFile
+from foamlib import FoamFile
 
 from floatfoam.bodies.geometry import rotation
 from floatfoam.bodies.shapes import EllipticCylinder
-from floatfoam.case import CASES_DIR, Case
-from floatfoam.errors import InputError
+from floatfoam.case import Case
+from floatfoam.errors import InputError, number
+from floatfoam.foam.dictionaries import write_dict, write_field
 from floatfoam.foam.ogrid import OGrid, block_mesh_dict
-from floatfoam.hydrostatics.theory import equilibrium
-from floatfoam.meshing.levels import LEVELS
-
-COMMON = CASES_DIR / "_common"
-PATCHES = ("body", "walls", "atmosphere", "frontBack")
+from floatfoam.hydrostatics.theory import Equilibrium
+from floatfoam.layout import COMMON_DIR
+from floatfoam.meshing.levels import level_index, refinement_ratio
 
 
 def setting(case: Case, table: str, key: str, default=None, *, minimum: float = 0.0,
@@ -33,24 +32,17 @@ def setting(case: Case, table: str, key: str, default=None, *, minimum: float = 
     value = case.raw.get(table, {}).get(key, default)
     if value is None:
         raise InputError(f"{table}.{key} is missing; the CFD case needs it")
-    ok = isinstance(value, (int, float)) and not isinstance(value, bool)
-    if not ok or not math.isfinite(value) or value <= minimum or (integer and value != int(value)):
-        kind = "a whole number" if integer else "a number"
-        raise InputError(f"{table}.{key} = {value!r}: valid is {kind} > {minimum:g}")
-    return int(value) if integer else float(value)
+    return number(value, f"{table}.{key}", minimum=minimum, integer=integer)
 
 
 def level_factor(case: Case, level: str) -> float:
     """Cell-count multiplier of a mesh level: r⁰, r¹, r² for coarse, medium, fine."""
-    if level not in LEVELS:
-        raise InputError(f"--level {level!r}: valid levels are {', '.join(LEVELS)}")
-    ratio = setting(case, "mesh", "refinement_ratio", math.sqrt(2.0), minimum=1.0)
-    return ratio ** LEVELS.index(level)
+    return refinement_ratio(case) ** level_index(level)
 
 
-def release_state(case: Case) -> dict:
-    """Body centre and centre of mass (earth frame) at release, and the equilibrium z of G."""
-    eq = equilibrium(case)
+def release_state(case: Case, eq: Equilibrium) -> dict:
+    """Body centre and centre of mass (earth frame) at release, and the equilibrium z of G,
+    from the case's equilibrium ``eq``."""
     heel = math.radians(case.release["heel"])
     trim = math.radians(case.release["trim"])
     centre_z = eq.z_c + case.release["heave"]
@@ -60,7 +52,8 @@ def release_state(case: Case) -> dict:
             "heel": heel, "trim": trim}
 
 
-def ogrid_for(case: Case, level: str) -> OGrid:
+def ogrid_for(case: Case, level: str, state: dict) -> OGrid:
+    """The O-grid of a circular section at ``level``, the body at its release ``state``."""
     body = case.body
     if not (isinstance(body, EllipticCylinder) and body.b == body.c):
         raise InputError(f"body.shape of case {case.name!r}: the CFD mesh is available for "
@@ -71,7 +64,7 @@ def ogrid_for(case: Case, level: str) -> OGrid:
         return setting(case, "mesh", key, default, integer=True)
 
     grid = OGrid(
-        radius=body.b, centre_z=release_state(case)["centre_z"],
+        radius=body.b, centre_z=state["centre_z"],
         half_length=setting(case, "domain", "half_length"), depth=depth,
         air_height=setting(case, "domain", "air_height"),
         thickness=setting(case, "domain", "thickness"),
@@ -90,9 +83,9 @@ def ogrid_for(case: Case, level: str) -> OGrid:
     return grid
 
 
-def check_settings(case: Case, level: str) -> None:
+def check_settings(case: Case, level: str, state: dict) -> None:
     """Every number the rendering reads, checked before anything is written."""
-    ogrid_for(case, level)
+    ogrid_for(case, level, state)
     for key, default in (("end_time", None), ("write_interval", 0.1), ("max_courant", 0.5),
                          ("max_delta_t", 0.005), ("acceleration_relaxation", 0.7),
                          ("inner_distance", 1.0), ("outer_distance", 1.0),
@@ -100,20 +93,20 @@ def check_settings(case: Case, level: str) -> None:
         setting(case, "run", key, default)
 
 
-def render(case: Case, level: str, run_dir: Path, *, np_: int = 1) -> dict:
-    """Write the run directory; returns what the driver needs (end time, limits, state)."""
-    grid = ogrid_for(case, level)
-    state = release_state(case)
+def render(case: Case, level: str, run_dir: Path, state: dict, *, np_: int = 1) -> dict:
+    """Write the run directory for the release ``state`` (:func:`release_state`); returns what
+    the driver needs (end time, cells, state)."""
+    grid = ogrid_for(case, level, state)
     run_dir.mkdir(parents=True, exist_ok=True)
     for sub in ("system", "constant"):
-        shutil.copytree(COMMON / sub, run_dir / sub, dirs_exist_ok=True)
-    _write_dict(run_dir / "system" / "blockMeshDict", block_mesh_dict(grid))
+        shutil.copytree(COMMON_DIR / sub, run_dir / sub, dirs_exist_ok=True)
+    write_dict(run_dir / "system" / "blockMeshDict", block_mesh_dict(grid))
     end_time = setting(case, "run", "end_time")
     _control(case, run_dir, grid, end_time)
     _fluid(case, run_dir)
     _motion(case, run_dir, grid, state)
     _fields(run_dir / "0.orig")
-    _write_dict(run_dir / "system" / "setAlphaFieldDict",
+    write_dict(run_dir / "system" / "setAlphaFieldDict",
                 {"field": "alpha.water", "type": "plane", "origin": [0.0, 0.0, 0.0],
                  "direction": [0.0, 0.0, 1.0]})
     decompose = FoamFile(run_dir / "system" / "decomposeParDict")
@@ -146,7 +139,7 @@ def _fluid(case: Case, run_dir: Path) -> None:
     fluid = case.raw["fluid"]
     transport["air"] = {"transportModel": "Newtonian", "nu": float(fluid["nu_air"]),
                         "rho": float(fluid["rho_air"])}
-    _write_dict(run_dir / "constant" / "g",
+    write_dict(run_dir / "constant" / "g",
                 {"dimensions": FoamFile.DimensionSet(length=1, time=-2),
                  "value": [0.0, 0.0, -case.g]}, cls="uniformDimensionedVectorField")
 
@@ -172,7 +165,7 @@ def _motion(case: Case, run_dir: Path, grid: OGrid, state: dict) -> None:
         }
     run = case.raw.get("run", {})
     if run.get("static_body", False):  # body held at its release position (still-water test)
-        _write_dict(run_dir / "constant" / "dynamicMeshDict", {"dynamicFvMesh": "staticFvMesh"})
+        write_dict(run_dir / "constant" / "dynamicMeshDict", {"dynamicFvMesh": "staticFvMesh"})
         return
     coeffs = {
         "patches": ["body"],
@@ -187,7 +180,7 @@ def _motion(case: Case, run_dir: Path, grid: OGrid, state: dict) -> None:
         "solver": {"type": "Newmark"},
         "constraints": constraints,
     }
-    _write_dict(run_dir / "constant" / "dynamicMeshDict", {
+    write_dict(run_dir / "constant" / "dynamicMeshDict", {
         "dynamicFvMesh": "dynamicMotionSolverFvMesh",
         "motionSolverLibs": ['"libsixDoFRigidBodyMotion.so"'],
         "motionSolver": "sixDoFRigidBodyMotion",
@@ -215,19 +208,7 @@ def _fields(folder: Path) -> None:
             "walls": {"type": "fixedValue", "value": zero},
             "atmosphere": {"type": "fixedValue", "value": zero}}),
     }
-    folder.mkdir(parents=True, exist_ok=True)
     for name, (cls, dims, internal, patches) in specs.items():
-        f = FoamFieldFile(folder / name)
-        f["FoamFile"] = {"version": 2.0, "format": "ascii", "class": cls, "object": name}
-        f.dimensions = dims
-        f.internal_field = internal
-        f.boundary_field = {**patches, "frontBack": {"type": "empty"}}
+        write_field(folder / name, cls, dims, internal, {**patches, "frontBack": {"type": "empty"}})
 
 
-def _write_dict(path: Path, entries: dict, cls: str = "dictionary") -> None:
-    if path.exists():
-        path.unlink()
-    f = FoamFile(path)
-    f["FoamFile"] = {"version": 2.0, "format": "ascii", "class": cls, "object": path.name}
-    for key, value in entries.items():
-        f[key] = value

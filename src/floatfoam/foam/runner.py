@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam.foam.logwatch import LogWatcher, Step
+from floatfoam.layout import mark_done, step_done
 from floatfoam.motion import MOTION_COLUMNS
 
 FOAM_ENV = {
@@ -24,7 +25,6 @@ FOAM_ENV = {
     "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
     "OMPI_MCA_btl_vader_single_copy_mechanism": "none",  # no CMA in containers
 }
-MARKERS = ".floatfoam"  # folder of step markers in a run directory
 
 
 class RunError(RuntimeError):
@@ -45,21 +45,16 @@ def foam_env() -> dict:
     return env
 
 
-def step_done(run_dir: Path, name: str) -> bool:
-    return (run_dir / MARKERS / f"{name}.done").exists()
-
-
-def mark_done(run_dir: Path, name: str) -> None:
-    (run_dir / MARKERS).mkdir(exist_ok=True)
-    (run_dir / MARKERS / f"{name}.done").write_text(time.strftime("%Y-%m-%d %H:%M:%S\n"))
-
-
 def run_app(run_dir: Path, name: str, argv: list[str], *, np_: int = 1,
-            log_name: str | None = None, quiet: bool = False) -> Path:
-    """Run one OpenFOAM utility to completion, logging to ``log.<name>``; skipped when its
-    marker says it already ran. Raises RunError with the log's path on failure."""
+            log_name: str | None = None, quiet: bool = False, marker: bool = True,
+            check: bool = True) -> Path:
+    """Run one OpenFOAM application to completion in ``run_dir``, logging to ``log.<name>``.
+
+    With ``marker`` (a step of the run driver) it is skipped when its marker says it already
+    ran, and marked done after; with ``check`` a non-zero exit raises RunError with the log's
+    path (checkMesh, which exits non-zero on a poor mesh, is read from its log instead)."""
     log = run_dir / f"log.{log_name or name}"
-    if step_done(run_dir, name):
+    if marker and step_done(run_dir, name):
         return log
     cmd = _mpi(argv, np_)
     if not quiet:
@@ -67,9 +62,10 @@ def run_app(run_dir: Path, name: str, argv: list[str], *, np_: int = 1,
     with open(log, "w") as fh:
         proc = subprocess.run(cmd, cwd=run_dir, stdout=fh, stderr=subprocess.STDOUT,
                               env=foam_env())
-    if proc.returncode != 0:
+    if check and proc.returncode != 0:
         raise RunError(f"{argv[0]} failed (exit code {proc.returncode}); see {log}")
-    mark_done(run_dir, name)
+    if marker:
+        mark_done(run_dir, name)
     return log
 
 

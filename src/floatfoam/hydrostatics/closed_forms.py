@@ -14,8 +14,34 @@ import math
 
 import numpy as np
 
+from floatfoam.bodies import shapes
 from floatfoam.bodies.geometry import rotation
-from floatfoam.hydrostatics.immersion import Immersed
+from floatfoam.hydrostatics.immersed_part import Immersed, nothing_immersed
+
+
+def for_body(body, z_c: float, heel: float, trim: float) -> Immersed | None:
+    """The exact immersed part of ``body`` at this attitude where a closed form is known,
+    else None: elliptic cylinders at any heel (no trim), conic cylinders and boxes upright,
+    ellipsoids at any attitude."""
+    if isinstance(body, shapes.EllipticCylinder):
+        return None if trim != 0.0 else ellipse_section(body.b, body.c, body.length, z_c, heel)
+    if isinstance(body, shapes.Ellipsoid):
+        return ellipsoid(body.axes, z_c, heel, trim)
+    if heel != 0.0 or trim != 0.0:
+        return None
+    if isinstance(body, shapes.ConicCylinder):
+        depth = min(max(body.h / 2 - z_c, 0.0), body.h)
+        i0, i1, w = conic_integrals(body.n, body.m, depth)
+        full = depth >= body.h
+    elif isinstance(body, shapes.Box):
+        depth = min(max(body.height / 2 - z_c, 0.0), body.height)
+        i0, i1, w = box_integrals(body.beam, body.r, depth)
+        full = depth >= body.height
+    else:
+        return None
+    if full:
+        w = 0.0  # fully submerged: no waterplane
+    return upright_section(2 * i0, 2 * i1, w, body.length, body.keel_z, z_c)
 
 
 def ellipse_section(half_beam: float, half_height: float, length: float, z_c: float,
@@ -34,7 +60,7 @@ def ellipse_section(half_beam: float, half_height: float, length: float, z_c: fl
     s = min(max(-z_c / r, -1.0), 1.0)
     area_u = math.acos(-s) + s * math.sqrt(1.0 - s * s)
     if area_u <= 0.0:
-        return _empty()
+        return nothing_immersed(exact=True)
     cen_u = -n * (2.0 / 3.0) * (1.0 - s * s) ** 1.5 / area_u
     rot = np.array([[math.cos(heel), -math.sin(heel)], [math.sin(heel), math.cos(heel)]])
     centroid = rot @ (d * cen_u) + np.array([0.0, z_c])
@@ -70,7 +96,7 @@ def ellipsoid(semi_axes, z_c: float, heel: float, trim: float) -> Immersed:
     h = 1.0 + s
     vol_u = math.pi * h * h * (3.0 - h) / 3.0
     if vol_u <= 0.0:
-        return _empty()
+        return nothing_immersed(exact=True)
     cen_u = -n * 3.0 * (2.0 - h) ** 2 / (4.0 * (3.0 - h))
     centroid = rot @ (d * cen_u) + np.array([0.0, 0.0, z_c])
     rho = math.sqrt(max(1.0 - s * s, 0.0))
@@ -133,7 +159,7 @@ def upright_section(area: float, first_moment: float, half_width: float, length:
                     keel_z: float, z_c: float) -> Immersed:
     """Upright prism from a section's immersed area and first moment about the keel."""
     if area <= 0.0:
-        return _empty()
+        return nothing_immersed(exact=True)
     width = 2.0 * half_width
     return Immersed(
         volume=area * length,
@@ -176,6 +202,3 @@ def box_integrals(beam: float, bilge_radius: float, depth: float) -> tuple[float
         w = flat + math.sqrt(max(r * r - (r - depth) ** 2, 0.0))
     return i0, i1, w
 
-
-def _empty() -> Immersed:
-    return Immersed(0.0, np.zeros(3), 0.0, np.zeros(2), np.zeros(3), exact=True)

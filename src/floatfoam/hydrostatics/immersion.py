@@ -19,34 +19,11 @@ the only error is the discretisation of the body's surface.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from floatfoam.bodies.geometry import to_earth
-
-
-@dataclass(frozen=True)
-class Immersed:
-    """Immersed part of a body at one attitude, in the earth frame (z up, free surface z = 0).
-
-    Attributes
-    ----------
-    volume : immersed volume V (m³; for a 2D section, for its length L)
-    centroid : centre of buoyancy B (3,) in m
-    waterplane_area : A_wp (m²)
-    waterplane_centroid : (x_f, y_f) centre of flotation, m
-    waterplane_inertia : (I_xx, I_yy, I_xy) second moments of the waterplane about axes through
-        its centroid: I_xx = ∫(y − y_f)² dA (roll), I_yy = ∫(x − x_f)² dA (pitch), m⁴
-    exact : True when computed from a closed form
-    """
-
-    volume: float
-    centroid: np.ndarray
-    waterplane_area: float
-    waterplane_centroid: np.ndarray
-    waterplane_inertia: np.ndarray
-    exact: bool = False
+from floatfoam.hydrostatics import closed_forms
+from floatfoam.hydrostatics.immersed_part import Immersed, nothing_immersed
 
 
 def immersed(body, z_c: float, heel: float = 0.0, trim: float = 0.0, *, method: str = "auto",
@@ -63,7 +40,7 @@ def immersed(body, z_c: float, heel: float = 0.0, trim: float = 0.0, *, method: 
     resolution : numeric resolution (polygon vertices or mesh level), body default if None
     """
     if method in ("auto", "closed"):
-        exact = body.closed_form(z_c, heel, trim)
+        exact = closed_forms.for_body(body, z_c, heel, trim)
         if exact is not None:
             return exact
         if method == "closed":
@@ -95,7 +72,7 @@ def section_immersed(polygon: np.ndarray, length: float, z_c: float, heel: float
 
     area = simpson(lambda r: r[:, 0])
     if area <= 0.0:
-        return _empty()
+        return nothing_immersed()
     y_b = simpson(lambda r: 0.5 * r[:, 0] ** 2) / area
     z_b = simpson(lambda r: r[:, 0] * r[:, 1]) / area
     width = float((q[:, 0] - p[:, 0]).sum())
@@ -136,7 +113,7 @@ def mesh_immersed(vertices: np.ndarray, faces: np.ndarray, z_c: float, heel: flo
     tri = to_earth(vertices, z_c, heel, trim)[faces]
     wet = clip_triangles(tri)
     if len(wet) == 0:
-        return _empty()
+        return nothing_immersed()
     a, b, c = wet[:, 0], wet[:, 1], wet[:, 2]
     n_z = 0.5 * np.cross(b - a, c - a)[:, 2]  # z component of the area-weighted normal
     mids = (0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a))
@@ -146,7 +123,7 @@ def mesh_immersed(vertices: np.ndarray, faces: np.ndarray, z_c: float, heel: flo
 
     volume = surface(lambda r: r[:, 2])
     if volume <= 0.0:
-        return _empty()
+        return nothing_immersed()
     centroid = np.array([
         surface(lambda r: r[:, 0] * r[:, 2]),
         surface(lambda r: r[:, 1] * r[:, 2]),
@@ -193,7 +170,3 @@ def _cut(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     point[:, 2] = 0.0
     return point
 
-
-def _empty() -> Immersed:
-    zero2 = np.zeros(2)
-    return Immersed(0.0, np.zeros(3), 0.0, zero2, np.zeros(3))

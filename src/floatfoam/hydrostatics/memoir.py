@@ -25,38 +25,23 @@ from __future__ import annotations
 
 import math
 
-from scipy.integrate import quad
-from scipy.optimize import brentq
-
-from floatfoam.errors import InputError
+from floatfoam.errors import InputError, number
+from floatfoam.hydrostatics.roots import brentq
 
 REFERENCE = "Le Barbier, Ann. math. pures appl. 8 (1817-1818) 37 ff."
 NEUTRAL_RTOL = 1e-9  # docs/conventions.md: GM = 0 to 1e-9 of the body size is 'neutral'
 
 
-def _number(name: str, value) -> float:
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} = {value!r}: must be a number") from None
-    if not math.isfinite(number):
-        raise InputError(f"{name} = {value!r}: must be finite")
-    return number
-
-
 def _positive(name: str, value) -> float:
-    number = _number(name, value)
-    if number <= 0:
-        raise InputError(f"{name} = {value!r}: must be > 0")
-    return number
+    return number(value, name, minimum=0.0)
 
 
 def _density_ratio(value) -> float:
-    number = _number("density_ratio", value)
-    if not 0.0 < number < 1.0:
+    number_ = number(value, "density_ratio")
+    if not 0.0 < number_ < 1.0:
         raise InputError(f"density_ratio = {value!r}: must lie strictly between 0 and 1 "
                          "(rho_body / rho_fluid of a floating body)")
-    return number
+    return number_
 
 
 def _linear_result(*, draft, section_or_volume, length, breadth_or_area, kb, bm, kg, gyradius,
@@ -181,6 +166,8 @@ def conic_cylinder(n: float, m: float, draft: float, kg: float, gyradius: float,
     if m < 0 and T >= -n / m:
         raise InputError(f"draft = {draft!r}: must be below the top of the elliptic section, "
                          f"-n/m = {-n / m!r}")
+
+    from scipy.integrate import quad
 
     def half_width_integral(power: int) -> float:  # int_0^T x**(power) y dx, with x = T s**2
         value, _ = quad(lambda s: s ** (2 + 2 * power) * math.sqrt(n + m * T * s * s), 0.0, 1.0,

@@ -7,11 +7,11 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq, root
 
 from floatfoam.bodies.geometry import rotation
 from floatfoam.case import Case
 from floatfoam.hydrostatics.immersion import Immersed, immersed
+from floatfoam.hydrostatics.roots import brentq
 
 NEUTRAL_TOL_EXACT = 1e-9  # |GM| / size below which GM is zero, closed forms (round-off)
 NEUTRAL_TOL_NUMERIC = 1e-5  # same, numeric path (surface discretisation ~1e-6 of the size)
@@ -53,6 +53,8 @@ def equilibrium(case: Case, **kw) -> Equilibrium:
     z_c, imm = sinkage_for_volume(case, volume, **kw)
     if abs(case.cog[0]) < 1e-12 * case.body.size and abs(case.cog[1]) < 1e-12 * case.body.size:
         return Equilibrium(z_c, 0.0, 0.0, imm)
+    from scipy.optimize import root  # only for a body that heels or trims at rest
+
     free = [abs(case.cog[1]) > 0, abs(case.cog[0]) > 0 and not case.body.is_section]
     size = case.body.size
 
@@ -117,13 +119,14 @@ def natural_period(stiffness: float, inertia: float) -> float | None:
     return 2.0 * math.pi * math.sqrt(inertia / stiffness) if stiffness > 0 else None
 
 
-def theory_summary(case: Case) -> dict:
-    """Everything the linear theory says about ``case``, in SI units, seconds and degrees.
+def theory_summary(case: Case, eq: Equilibrium | None = None) -> dict:
+    """Everything the linear theory says about ``case``, in SI units, seconds and degrees
+    (``eq``: its equilibrium, solved here when not given).
 
     Heave: ω² = ρgA/M; roll and pitch: ω² = ρgV·GM/(M K²) (Le Barbier 1817), with GM from the
     stiffness: GM = C44/(ρgV) and C55/(ρgV).
     """
-    eq = equilibrium(case)
+    eq = eq or equilibrium(case)
     imm = eq.immersed
     c = stiffness_matrix(case, eq)
     rgv = case.rho * case.g * imm.volume

@@ -49,9 +49,9 @@ def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release
     if kind == "2d" and where.trim != 0.0:
         raise InputError(f"--kind 2d: {case.name} is trimmed at this pose; a 2D section cannot "
                          "trim: valid is release.trim = 0 or --kind 3d")
-    from floatfoam.case import ROOT
+    from floatfoam.layout import case_build_dir
 
-    path = Path(path) if path else ROOT / "build" / case.name / "mesh" / level / \
+    path = Path(path) if path else case_build_dir(case.name) / "mesh" / level / \
         f"domain_{kind}.msh"
     if kind == "3d":
         result = domain_3d(case, spec, box, where, path)

@@ -27,9 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from floatfoam.case import Case
-from floatfoam.errors import InputError
-
-LEVELS = ("coarse", "medium", "fine")
+from floatfoam.errors import InputError, number
+from floatfoam.layout import LEVELS
 
 REFINEMENT_RATIO = math.sqrt(2)  # r between consecutive levels (mesh.refinement_ratio)
 MESH_DEFAULTS = {  # [mesh.gmsh]
@@ -124,6 +123,17 @@ def level_index(level: str) -> int:
     return LEVELS.index(level)
 
 
+def refinement_ratio(case: Case) -> float:
+    """The ratio r between consecutive levels: ``mesh.refinement_ratio`` (default √2), > 1."""
+    mesh = case.raw.get("mesh", {})
+    ratio = _positive(mesh, "mesh", "refinement_ratio") if "refinement_ratio" in mesh \
+        else REFINEMENT_RATIO
+    if ratio <= 1.0:
+        raise InputError(f"mesh.refinement_ratio = {ratio!r}: valid is a number > 1 "
+                         "(Celik et al. 2008 advise > 1.3)")
+    return ratio
+
+
 def mesh_spec(case: Case, level: str) -> MeshSpec:
     """Sizes of ``level`` for ``case``: MESH_DEFAULTS overridden by ``[mesh.gmsh]``, the ratio
     from ``mesh.refinement_ratio`` (default √2)."""
@@ -134,11 +144,7 @@ def mesh_spec(case: Case, level: str) -> MeshSpec:
         raise InputError(f"mesh.gmsh = {gmsh_table!r}: valid is a table of "
                          f"{', '.join(MESH_DEFAULTS)}")
     cfg = _table(gmsh_table, "mesh.gmsh", MESH_DEFAULTS)
-    ratio = _positive(mesh, "mesh", "refinement_ratio") if "refinement_ratio" in mesh \
-        else REFINEMENT_RATIO
-    if ratio <= 1.0:
-        raise InputError(f"mesh.refinement_ratio = {ratio!r}: valid is a number > 1 "
-                         "(Celik et al. 2008 advise > 1.3)")
+    ratio = refinement_ratio(case)
     for key in ("growth", "growth_3d"):
         if cfg[key] <= 1.0:
             raise InputError(f"mesh.gmsh.{key} = {cfg[key]!r}: valid is a growth ratio > 1")
@@ -211,8 +217,4 @@ def _table(given: dict, name: str, defaults: dict) -> dict:
 
 
 def _positive(table: dict, name: str, key: str) -> float:
-    value = table[key]
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 \
-            or not math.isfinite(value):
-        raise InputError(f"{name}.{key} = {value!r}: valid is a finite number > 0")
-    return float(value)
+    return number(table[key], f"{name}.{key}", minimum=0.0)

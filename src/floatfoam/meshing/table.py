@@ -3,17 +3,21 @@ request, the fluid domain's cells and checkMesh quality (a Markdown table for th
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
+from floatfoam.layout import LEVELS, build_dir
 from floatfoam.meshing.domains import build_domain
-from floatfoam.meshing.levels import LEVELS, mesh_spec
+from floatfoam.meshing.levels import mesh_spec
 from floatfoam.meshing.volume_report import discrete_volume_report
 
 
-def level_rows(case, levels=LEVELS, domains: bool = False, check: bool = False,
+def level_rows(case, levels=LEVELS, domains: bool = False, check: Callable | None = None,
                kind: str = "auto", scratch: Path | None = None) -> list[dict]:
     """One row per level of ``case``: sizes, the discrete volume report and (``domains``) the
-    domain's cells, with checkMesh's quality when ``check`` (gmshToFoam into ``scratch``)."""
+    domain's cells, with the mesh's quality when a ``check`` is given (called with the .msh
+    and a folder for the OpenFOAM mesh, e.g. :func:`floatfoam.foam.meshcheck.convert_and_check`;
+    the meshing never runs OpenFOAM itself)."""
     from floatfoam.hydrostatics.theory import equilibrium
 
     eq = equilibrium(case)
@@ -29,15 +33,13 @@ def level_rows(case, levels=LEVELS, domains: bool = False, check: bool = False,
         if "meridian" in report:
             row["wedge_immersed_error"] = report["meridian"]["immersed_error"]
         if domains:
-            folder = (scratch or Path("build")) / case.name / level
+            folder = (scratch or build_dir() / "mesh_table") / case.name / level
             result = build_domain(case, level, kind, path=folder / "domain.msh")
             row.update(kind=result["kind"], cells=result["cells"],
                        cell_types=result["cell_types"],
                        patch_immersed_error=result["body_patch"]["immersed_error"])
-            if check:
-                from floatfoam.foam.meshcheck import convert_and_check
-
-                quality = convert_and_check(Path(result["path"]), folder / "foam")
+            if check is not None:
+                quality = check(Path(result["path"]), folder / "foam")
                 row.update(max_non_orthogonality=quality["max_non_orthogonality"],
                            max_skewness=quality["max_skewness"], mesh_ok=quality["mesh_ok"])
         rows.append(row)

@@ -147,9 +147,9 @@ def _digest(arrays: dict, scalars: dict) -> str:
 
 
 def default_cache_dir() -> Path:
-    from floatfoam.case import ROOT
+    from floatfoam.layout import build_dir
 
-    return ROOT / "build" / "potential"
+    return build_dir() / "potential"
 
 
 def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=None,

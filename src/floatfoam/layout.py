@@ -1,0 +1,81 @@
+"""The layout on disk, in one place: where cases live, where their runs and products go.
+
+::
+
+    cases/<case>/case.toml            a case (folders starting with ``_`` are shared material)
+    cases/_common/                    OpenFOAM dictionaries every run starts from
+    <build>/<case>/<level>/           the run directory of a case at a mesh level
+    <build>/<case>/<level>/.floatfoam/<step>.done
+                                      the driver's step markers; ``finished.done`` marks a
+                                      finished run (only those reach the comparison and report)
+    <build>/<case>/                   a case's other products (gz.png, potential.png, decay_*.csv,
+                                      mesh/<level>/)
+    <build>/potential/                the potential-flow cache
+    <build>/report/                   the project report
+    build/solver/bin/interFoam        floatfoam's interFoam (``make setup``)
+
+``<build>`` is the project's ``build/`` unless the environment variable ``FLOATFOAM_BUILD``
+names another folder. The solver always lives in the project's ``build/solver`` (it is built
+by ``make setup``, not by a run).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+CASES_DIR = ROOT / "cases"
+COMMON_DIR = CASES_DIR / "_common"
+PROJECT_BUILD = ROOT / "build"
+SOLVER = PROJECT_BUILD / "solver" / "bin" / "interFoam"
+BUILD_ENV = "FLOATFOAM_BUILD"
+
+#: Mesh levels, coarse to fine: one refinement ratio between neighbours (meshing.levels).
+LEVELS = ("coarse", "medium", "fine")
+
+MARKERS = ".floatfoam"  # folder of the driver's step markers in a run directory
+FINISHED = "finished"  # the step that marks a run finished
+
+
+def build_dir() -> Path:
+    """The build folder: ``$FLOATFOAM_BUILD`` if set, else the project's ``build/``."""
+    override = os.environ.get(BUILD_ENV)
+    return Path(override).resolve() if override else PROJECT_BUILD
+
+
+def case_build_dir(case_name: str, build: Path | None = None) -> Path:
+    """Where a case's products go: ``<build>/<case>``."""
+    return Path(build or build_dir()) / case_name
+
+
+def run_dir(case_name: str, level: str, build: Path | None = None) -> Path:
+    """The run directory of a case at a mesh level: ``<build>/<case>/<level>``."""
+    return case_build_dir(case_name, build) / level
+
+
+def list_cases(cases_dir: Path | None = None) -> list[Path]:
+    """Case folders (holding a case.toml) under ``cases_dir``, skipping names starting with _."""
+    return sorted(p.parent for p in Path(cases_dir or CASES_DIR).glob("*/case.toml")
+                  if not p.parent.name.startswith("_"))
+
+
+def marker(run: Path, step: str) -> Path:
+    """The marker file of a driver step in a run directory."""
+    return Path(run) / MARKERS / f"{step}.done"
+
+
+def step_done(run: Path, step: str) -> bool:
+    return marker(run, step).exists()
+
+
+def mark_done(run: Path, step: str) -> None:
+    path = marker(run, step)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(time.strftime("%Y-%m-%d %H:%M:%S\n"))
+
+
+def is_finished(run: Path) -> bool:
+    """Whether the driver marked this run directory finished."""
+    return step_done(run, FINISHED)
