@@ -37,7 +37,7 @@ def swings(t, z, z_eq):
 def test_cylinder_heave_coarse_decays_with_added_mass(tmp_path):
     """2.6 heave periods (1.6 s) of the coarse run, on 2 MPI ranks (decomposePar + mpirun)."""
     case = load_case("cylinder_heave", ["run.end_time=1.6"])
-    theory = theory_summary(case)
+    theory = theory_summary(case).to_dict()
     result = run_case(case, "coarse", 2, build_dir=tmp_path)
     t, z = dof_series(read_motion(result.motion_csv), "heave")
     assert t[-1] == pytest.approx(1.6, abs=1e-6) and np.all(np.isfinite(z))

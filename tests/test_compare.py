@@ -24,6 +24,7 @@ from floatfoam.analysis.compare import (
     write_comparison,
 )
 from floatfoam.errors import InputError
+from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.layout import mark_done
 from floatfoam.motion import write_motion
 
@@ -47,10 +48,11 @@ def fake_case(tmp_path, name="fake_cylinder", release=None, reference=None):
                                  release=release, reference=reference or {})
 
 
-THEORY = {"heave_period": THEORY_PERIOD, "roll_period": 1.2, "pitch_period": None,
-          "verdict_roll": "oscillates", "verdict_pitch": "oscillates",
-          "equilibrium": {"z_G": -0.001, "heel": 0.0, "trim": 0.0},
-          "memoir": {"heave_period": 0.5, "source": "reconstructed"}}
+THEORY_DICT = {"heave_period": THEORY_PERIOD, "roll_period": 1.2, "pitch_period": None,
+               "verdict_roll": "oscillates", "verdict_pitch": "oscillates",
+               "equilibrium": {"z_G": -0.001, "heel": 0.0, "trim": 0.0},
+               "memoir": {"heave_period": 0.5, "source": "reconstructed"}}
+THEORY = TheorySummary.from_dict(THEORY_DICT)
 REFERENCE = {"heave_period": {"value": 0.60, "uncertainty": 0.01, "source": "Ito 1977"},
              "heave_damping_ratio": {"value": 0.12, "uncertainty": 0.02, "source": "Ito 1977"}}
 
@@ -142,7 +144,8 @@ def test_without_reference_differences_are_to_theory(tmp_path, no_potential):
 
 def test_roll_record_in_degrees(tmp_path, no_potential):
     case = fake_case(tmp_path, release={"heave": 0.0, "heel": 10.0, "trim": 0.0})
-    theory = {**THEORY, "equilibrium": {"z_G": 0.0, "heel": 0.2, "trim": 0.0}}
+    theory = TheorySummary.from_dict(
+        {**THEORY_DICT, "equilibrium": {"z_G": 0.0, "heel": 0.2, "trim": 0.0}})
     t = np.arange(0.0, 6.0, 5e-3)
     roll = synthetic_decay(t, 10.0, 0.5, period=1.3, zeta=0.05)  # degrees, as in the file
     write_run(tmp_path / "build", case.name, "coarse", t, roll=roll)

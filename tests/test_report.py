@@ -19,6 +19,7 @@ import pytest
 from floatfoam.analysis.report import Sources, build_report
 from floatfoam.cli import report as report_command
 from floatfoam.errors import InputError
+from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.layout import list_cases, mark_done
 from floatfoam.motion import write_motion
 
@@ -61,12 +62,13 @@ def fake_sources(monkeypatch):
                                      reference=reference)
 
     def theory_summary(case):
-        return {"draft": 0.0762, "displaced_volume": 0.00912, "waterplane_area": 0.1524,
+        return TheorySummary.from_dict({
+                "draft": 0.0762, "displaced_volume": 0.00912, "waterplane_area": 0.1524,
                 "KB": 0.0439, "KG": 0.0762, "BM_roll": 0.0323, "BM_pitch": 1.39,
                 "GM_roll": 0.0, "GM_pitch": 1.36, "heave_period": 0.4908,
                 "roll_period": 1.29 if case.name == "box" else None, "pitch_period": 0.5,
                 "verdict_roll": "neutral", "verdict_pitch": "oscillates",
-                "equilibrium": {"z_G": 0.0, "heel": 0.0, "trim": 0.0}, "memoir": {}}
+                "equilibrium": {"z_G": 0.0, "heel": 0.0, "trim": 0.0}, "memoir": {}})
 
     sources = Sources(load=load_case, theory=theory_summary, potential=None)
     monkeypatch.setattr(Sources, "default", classmethod(lambda cls, **kw: sources))

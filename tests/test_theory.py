@@ -13,7 +13,7 @@ A = 0.0762
 
 
 def test_ito_cylinder_theory():
-    s = theory_summary(load_case("cylinder_heave"))
+    s = theory_summary(load_case("cylinder_heave")).to_dict()
     assert s["draft"] == pytest.approx(A, rel=1e-9)  # half immersed at density 500
     assert s["waterplane_area"] == pytest.approx(2 * A, rel=1e-12)
     # ω² = ρgA_wp/M = ρg·2a / (ρ_b π a²) = 4g/(π a) for ρ_b = ρ/2 (hand derivation)
@@ -27,14 +27,14 @@ def test_ito_cylinder_theory():
 
 @pytest.mark.parametrize("z_g, verdict", [(-0.01, "oscillates"), (0.01, "capsizes")])
 def test_circle_verdict_follows_cog(z_g, verdict):
-    s = theory_summary(load_case("cylinder_heave", [f"mass.cog=[0.0, 0.0, {z_g}]"]))
+    s = theory_summary(load_case("cylinder_heave", [f"mass.cog=[0.0, 0.0, {z_g}]"])).to_dict()
     assert s["verdict_roll"] == verdict
     assert s["GM_roll"] == pytest.approx(-z_g, rel=1e-9)  # GM = a − KG
 
 
 def test_sphere_metacentric_height_by_hand():
     """Half-immersed sphere: KB = a − 3a/8, BM = (πa⁴/4)/(2πa³/3) = 3a/8, so GM = a − KG."""
-    s = theory_summary(load_case("sphere"))
+    s = theory_summary(load_case("sphere")).to_dict()
     a, kg = 0.1, 0.08
     assert s["KB"] == pytest.approx(a - 3 * a / 8, rel=1e-12)
     assert s["BM_roll"] == pytest.approx(3 * a / 8, rel=1e-12)
@@ -48,7 +48,7 @@ def test_stiffness_symmetric_and_consistent():
     case = load_case("ellipsoid")
     c = stiffness_matrix(case)
     np.testing.assert_allclose(c, c.T, atol=1e-12)
-    s = theory_summary(case)
+    s = theory_summary(case).to_dict()
     rgv = 1000 * 9.81 * s["displaced_volume"]
     assert c[1, 1] == pytest.approx(rgv * s["GM_roll"], rel=1e-12)
     assert c[0, 0] == pytest.approx(1000 * 9.81 * s["waterplane_area"], rel=1e-12)
@@ -63,7 +63,7 @@ def test_off_axis_cog_heels_until_b_is_under_g():
     assert righting_arm(case, eq.heel) == pytest.approx(0.0, abs=1e-9)
     # towards G's side (positive y → negative heel with R_x), where the wall-sided righting
     # arm of the symmetric box balances the lever of G: sin φ (GM + ½BM tan²φ) = y_G cos φ
-    s = theory_summary(load_case("box_bilge"))
+    s = theory_summary(load_case("box_bilge")).to_dict()
     phi = -eq.heel
     assert phi > 0
     lhs = math.sin(phi) * (s["GM_roll"] + 0.5 * s["BM_roll"] * math.tan(phi) ** 2)
@@ -89,7 +89,7 @@ def test_box_gz_wall_sided_formula():
     immersion (tan φ = (D − T)/(B/2), 33.7°) and bilge emergence (tan φ = (T − r)/(B/2),
     25.0° here). Checked to 24°, to 1e-7 m (polygon accuracy)."""
     case = load_case("box_bilge")
-    s = theory_summary(case)
+    s = theory_summary(case).to_dict()
     for deg in np.arange(0.0, 24.1, 2.0):
         phi = math.radians(deg)
         expected = math.sin(phi) * (s["GM_roll"] + 0.5 * s["BM_roll"] * math.tan(phi) ** 2)
@@ -113,7 +113,7 @@ def test_capsizing_body_has_zero_vanishing_angle():
 def test_memoir_method_matches_exact_theory(case):
     """floatfoam.hydrostatics.memoir (the memoir's method, derived by hand in docs/memoir.md) and
     the hydrostatics engine are independent derivations of the same linear theory."""
-    s = theory_summary(load_case(case))
+    s = theory_summary(load_case(case)).to_dict()
     memoir = s["memoir"]
     assert memoir["source"] == "reconstructed"
     for key in ("draft", "waterplane_area", "KB", "BM_roll", "heave_period"):

@@ -121,7 +121,7 @@ def _zero_crossing_period(t, y):
 def _released(case, dz=0.0, dheel=0.0, periods=4, key="roll_period"):
     eq = equilibrium(case)
     z_g = float((rotation(eq.heel, eq.trim) @ case.cog)[2] + eq.z_c)
-    period = theory_summary(case)[key]
+    period = theory_summary(case).to_dict()[key]
     t = np.linspace(0.0, periods * period, 200 * periods + 1)
     res = nonlinear_decay(RigidBody.from_case(case), z_g + dz, eq.heel + dheel, eq.trim, t)
     return eq, z_g, period, res

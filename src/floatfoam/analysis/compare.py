@@ -3,7 +3,7 @@
 Rows, in this order, for each degree of freedom the case releases (``[release]`` heave, heel,
 trim → heave, roll, pitch) or lists a reference for:
 
-* **memoir formula**: Le Barbier's printed formula (``theory_summary(case)["memoir"]``);
+* **memoir formula**: Le Barbier's printed formula (``theory_summary(case).memoir``);
 * **linear theory (exact)**: the exact hydrostatic linear theory, undamped natural period;
 * **potential flow**: added mass and radiation damping (when :mod:`floatfoam.potential.radiation` is
   available for the case);
@@ -28,6 +28,7 @@ from pathlib import Path
 from floatfoam import dofs, layout
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.errors import InputError
+from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.motion import dof_series, file_unit, read_motion
 
 CSV_FIELDS = ("case", "dof", "source", "period", "period_lo", "period_hi", "damping_ratio",
@@ -98,9 +99,9 @@ def _row(case, dof, source, period=None, period_ci=None, zeta=None, zeta_ci=None
             "period_rel_diff": None, "damping_rel_diff": None, "basis": "", "note": note}
 
 
-def theory_equilibrium(theory: dict, dof: str) -> float | None:
+def theory_equilibrium(theory: TheorySummary, dof: str) -> float | None:
     """Equilibrium of a DoF in code units (z of G in m; heel, trim in radians)."""
-    eq = theory.get("equilibrium") or {}
+    eq = theory.equilibrium or {}
     entry = dofs.dof(dof)
     if eq.get(entry.equilibrium_key) is None:
         return None
@@ -163,12 +164,12 @@ def _potential(case, source, notes: list[str]) -> dict:
 
 def _theory_rows(case, dof, theory, potential):
     rows = []
-    memoir = theory.get("memoir") or {}
+    memoir = theory.memoir or {}
     if memoir.get(f"{dof}_period") is not None:
         label = f"memoir ({memoir['source']})" if memoir.get("source") else "memoir formula"
         rows.append(_row(case.name, dof, label, float(memoir[f"{dof}_period"])))
-    period = theory.get(f"{dof}_period")
-    note = "" if period is not None else f"no oscillation ({theory.get(f'verdict_{dof}', '')})"
+    period = theory.period(dof)
+    note = "" if period is not None else f"no oscillation ({theory.dofs[dof].verdict or ''})"
     rows.append(_row(case.name, dof, "linear theory (exact)", period, note=note.strip()))
     if potential.get(f"{dof}_period") is not None:
         method = ", ".join(f"{potential[k]}{label}" for k, label in
@@ -212,7 +213,7 @@ def _relative_differences(rows: list[dict]) -> None:
                                                        f"{label} vs {base['source']}")))
 
 
-def compare_case(case, *, build_dir: str | Path, theory: dict | None = None,
+def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = None,
                  potential: Callable | None = potential_flow,
                  analysis_options: dict | None = None) -> Comparison:
     """The comparison table of one case (see the module docstring for the rows).

@@ -37,6 +37,7 @@ from floatfoam.analysis.compare import (
 from floatfoam.analysis.document import Document
 from floatfoam.analysis.plots import Overlay, plot_decay
 from floatfoam.errors import InputError
+from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.motion import file_unit
 
 # (key of theory_summary, label, unit)
@@ -85,8 +86,9 @@ def _cell(value) -> str:
     return fmt(None if value is None else float(value), ".5g")
 
 
-def theory_table(theory: dict) -> tuple[list[str], list[list[str]]]:
+def theory_table(summary: TheorySummary) -> tuple[list[str], list[list[str]]]:
     """Header and rows of the linear theory, with the memoir's values beside where it has any."""
+    theory = summary.to_dict()
     memoir = theory.get("memoir") or {}
     header = ["quantity", "exact theory"] + (
         [f"memoir ({memoir['source']})" if memoir.get("source") else "memoir"]
@@ -99,7 +101,7 @@ def theory_table(theory: dict) -> tuple[list[str], list[list[str]]]:
     return header, rows
 
 
-def _overlay(case, theory: dict, dof: str) -> Overlay:
+def _overlay(case, theory: TheorySummary, dof: str) -> Overlay:
     scale, _ = file_unit(dof)
     eq = theory_equilibrium(theory, dof)
     release = (getattr(case, "release", None) or {}).get(dofs.dof(dof).release_key)
@@ -107,7 +109,7 @@ def _overlay(case, theory: dict, dof: str) -> Overlay:
     period = reference_entry(reference, f"{dof}_period")
     zeta = reference_entry(reference, f"{dof}_damping_ratio")
     sources = sorted({e[2] for e in (period, zeta) if e and e[2]})
-    return Overlay(theory_period=theory.get(f"{dof}_period"),
+    return Overlay(theory_period=theory.period(dof),
                    equilibrium=None if eq is None else eq * scale,
                    release=None if release is None else float(release),
                    reference_period=period[0] if period else None,
@@ -197,9 +199,9 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
     return [case.name, title or "—", _periods_cell(theory), _status(comparison)]
 
 
-def _periods_cell(theory: dict) -> str:
-    parts = [f"{dof} {theory[f'{dof}_period']:.4g} s" for dof in dofs.NAMES
-             if theory.get(f"{dof}_period") is not None]
+def _periods_cell(theory: TheorySummary) -> str:
+    parts = [f"{dof} {theory.period(dof):.4g} s" for dof in dofs.NAMES
+             if theory.period(dof) is not None]
     return ", ".join(parts) or "—"
 
 

@@ -55,8 +55,8 @@ def print_summary(case, result, eq) -> None:
     print(f"{'time (s)':>9} {'z of G (m)':>12}")
     for i in range(0, len(t), max(1, len(t) // 12)):
         print(f"{t[i]:>9.3f} {z[i]:>12.6f}")
-    memoir = theory["memoir"].get("heave_period")
-    print(f"theory heave period (no added mass): {theory['heave_period']:.4f} s"
+    memoir = theory.memoir.get("heave_period")
+    print(f"theory heave period (no added mass): {theory.period('heave'):.4f} s"
           + (f"; memoir: {memoir:.4f} s" if memoir else ""))
     try:
         decay = analyse_decay(t, z).summary()

@@ -34,7 +34,7 @@ def run(args) -> int:
     from floatfoam.hydrostatics.theory import theory_summary
 
     case = load_case(args.case, args.overrides)
-    summary = theory_summary(case)
+    summary = theory_summary(case).to_dict()
     if args.json:
         print(dump_json(summary))
         return 0

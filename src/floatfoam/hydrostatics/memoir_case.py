@@ -16,13 +16,15 @@ KEYS = {"draft": "draft", "waterplane_area": "waterplane_area", "KB": "kb", "KG"
         "roll_period": "roll_period", "verdict_roll": "verdict_roll"}
 
 
-def memoir_values(case, summary: dict) -> dict:
+def memoir_values(case, *, kg: float, draft: float) -> dict:
     """Values of the memoir's formulas where it covers the body (G on the vertical axis),
-    else {}. Keys as in the theory summary, plus ``source`` and ``reference``."""
+    else {}, for the exact theory's KG and draft. Keys as in
+    :meth:`floatfoam.hydrostatics.summary.TheorySummary.to_dict`, plus ``source`` and
+    ``reference``."""
     body = case.body
     if abs(case.cog[0]) > 0 or abs(case.cog[1]) > 0:
         return {}
-    kg, k_roll = summary["KG"], float(case.gyradius[0])
+    k_roll = float(case.gyradius[0])
     physics = {"rho": case.rho, "g": case.g}
     ratio = case.mass / (case.rho * body.volume())
     if isinstance(body, EllipticCylinder):
@@ -31,10 +33,10 @@ def memoir_values(case, summary: dict) -> dict:
                                            **physics)
         else:
             n, m = 2 * body.b**2 / body.c, -(body.b**2) / body.c**2
-            out = memoir.conic_cylinder(n, m, summary["draft"], kg, k_roll,
+            out = memoir.conic_cylinder(n, m, draft, kg, k_roll,
                                         length=body.length, **physics)
     elif isinstance(body, ConicCylinder):
-        out = memoir.conic_cylinder(body.n, body.m, summary["draft"], kg, k_roll,
+        out = memoir.conic_cylinder(body.n, body.m, draft, kg, k_roll,
                                     length=body.length, **physics)
     elif isinstance(body, Ellipsoid) and body.axes[0] == body.axes[1]:
         a, c = body.axes[0], body.axes[2]

@@ -12,6 +12,7 @@ from floatfoam.bodies.geometry import rotation
 from floatfoam.case import Case
 from floatfoam.hydrostatics.immersion import Immersed, immersed
 from floatfoam.hydrostatics.roots import brentq
+from floatfoam.hydrostatics.summary import DofTheory, TheorySummary
 
 NEUTRAL_TOL_EXACT = 1e-9  # |GM| / size below which GM is zero, closed forms (round-off)
 NEUTRAL_TOL_NUMERIC = 1e-5  # same, numeric path (surface discretisation ~1e-6 of the size)
@@ -119,7 +120,7 @@ def natural_period(stiffness: float, inertia: float) -> float | None:
     return 2.0 * math.pi * math.sqrt(inertia / stiffness) if stiffness > 0 else None
 
 
-def theory_summary(case: Case, eq: Equilibrium | None = None) -> dict:
+def theory_summary(case: Case, eq: Equilibrium | None = None) -> TheorySummary:
     """Everything the linear theory says about ``case``, in SI units, seconds and degrees
     (``eq``: its equilibrium, solved here when not given).
 
@@ -143,39 +144,33 @@ def theory_summary(case: Case, eq: Equilibrium | None = None) -> dict:
     ]
     i_xx, i_yy, _ = imm.waterplane_inertia
     g_earth = rotation(eq.heel, eq.trim) @ case.cog + np.array([0.0, 0.0, eq.z_c])
-    summary = {
-        "case": case.name,
-        "body": type(case.body).__name__,
-        "section_length": case.body.length,
-        "mass": case.mass,
-        "draft": -float(min(_lowest_point(case, eq), 0.0)),
-        "displaced_volume": imm.volume,
-        "waterplane_area": imm.waterplane_area,
-        "KB": float(b_body[2] - keel),
-        "KG": float(case.cog[2] - keel),
-        "BM_roll": i_xx / imm.volume,
-        "BM_pitch": i_yy / imm.volume,
-        "GM_roll": gm_roll,
-        "GM_pitch": gm_pitch,
-        "heave_period": periods[0],
-        "roll_period": periods[1],
-        "pitch_period": periods[2],
-        "verdict_roll": verdicts[0],
-        "verdict_pitch": verdicts[1],
-        "equilibrium": {
+    draft, kg = -float(min(_lowest_point(case, eq), 0.0)), float(case.cog[2] - keel)
+    from floatfoam.hydrostatics.memoir_case import memoir_values
+
+    return TheorySummary(
+        case=case.name,
+        body=type(case.body).__name__,
+        section_length=case.body.length,
+        mass=case.mass,
+        draft=draft,
+        displaced_volume=imm.volume,
+        waterplane_area=imm.waterplane_area,
+        KB=float(b_body[2] - keel),
+        KG=kg,
+        dofs={"heave": DofTheory(periods[0]),
+              "roll": DofTheory(periods[1], gm_roll, i_xx / imm.volume, verdicts[0]),
+              "pitch": DofTheory(periods[2], gm_pitch, i_yy / imm.volume, verdicts[1])},
+        equilibrium={
             "z_centre": eq.z_c,
             "z_G": float(g_earth[2]),
             "heel": math.degrees(eq.heel),
             "trim": math.degrees(eq.trim),
             "centre_of_buoyancy": imm.centroid.tolist(),
         },
-        "stiffness": c.tolist(),
-        "exact": imm.exact,
-    }
-    from floatfoam.hydrostatics import memoir_case as memoir_eval
-
-    summary["memoir"] = memoir_eval.memoir_values(case, summary)
-    return summary
+        stiffness=c.tolist(),
+        exact=imm.exact,
+        memoir=memoir_values(case, kg=kg, draft=draft),
+    )
 
 
 def _lowest_point(case: Case, eq: Equilibrium) -> float:
