@@ -27,6 +27,7 @@ from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.layout import mark_done
 from floatfoam.motion import write_motion
+from floatfoam.potential.summary import PotentialSummary
 
 PERIOD, ZETA = 0.63, 0.15  # synthetic "CFD" record: damped period (s) and damping ratio
 THEORY_PERIOD = 0.49  # s, stand-in for the exact linear theory (undamped)
@@ -60,7 +61,8 @@ REFERENCE = {"heave_period": {"value": 0.60, "uncertainty": 0.01, "source": "Ito
 @pytest.fixture
 def potential():
     """A stand-in potential-flow source."""
-    return lambda case: {"heave_period": 0.62, "heave_damping_ratio": 0.10}
+    return lambda case: PotentialSummary.from_dict({"heave_period": 0.62,
+                                                    "heave_damping_ratio": 0.10})
 
 
 @pytest.fixture

@@ -20,7 +20,7 @@ def test_real_heave_record():
     # Against 2D potential flow (an independent method): the period with added mass at
     # resonance is 0.620 s; within 5 %, since the potential period is undamped and linear
     # while the record is damped (T_d = T_n/√(1 − ζ²)) and released at a third of the radius.
-    potential = potential_summary(load_case("cylinder_heave"))
+    potential = potential_summary(load_case("cylinder_heave")).to_dict()
     assert s["period_mean"] == pytest.approx(potential["heave_period"], rel=0.05)
     # radiation damping is most of the damping of a half-immersed cylinder: same order
     assert 0.5 < s["damping_ratio"] / potential["heave_damping_ratio"] < 1.5

@@ -158,7 +158,7 @@ def test_summary_of_a_section_case(tmp_path):
     (None), pitch is not solved for a section (None)."""
     case = load_case("cylinder_heave")
     coef = radiation_coefficients(case, cache_dir=tmp_path)
-    summary = potential_summary(case, coefficients=coef)
+    summary = potential_summary(case, coefficients=coef).to_dict()
     a = 0.0762
     assert summary["heave_period"] > summary["heave_period_no_added_mass"]
     omega_nd = summary["heave_natural_frequency"] * math.sqrt(a / case.g)

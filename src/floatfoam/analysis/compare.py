@@ -30,6 +30,7 @@ from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.motion import dof_series, file_unit, read_motion
+from floatfoam.potential.summary import PotentialSummary
 
 CSV_FIELDS = ("case", "dof", "source", "period", "period_lo", "period_hi", "damping_ratio",
               "damping_lo", "damping_hi", "period_rel_diff", "damping_rel_diff", "basis",
@@ -146,19 +147,19 @@ def potential_flow(case) -> dict:
     return potential_summary(case)
 
 
-def _potential(case, source, notes: list[str]) -> dict:
+def _potential(case, source, notes: list[str]) -> PotentialSummary | None:
     if source is None:
         notes.append("potential flow: not requested")
-        return {}
+        return None
     try:
-        summary = source(case) or {}
+        summary = source(case)
     except (ImportError, AttributeError) as err:
         notes.append(f"potential flow: not available ({err})")
-        return {}
+        return None
     except (InputError, NotImplementedError, RuntimeError) as err:
         notes.append(f"potential flow: not computed for this case ({err})")
-        return {}
-    notes += [f"potential flow: {note}" for note in summary.get("notes") or []]
+        return None
+    notes += [f"potential flow: {note}" for note in summary.notes]
     return summary
 
 
@@ -171,11 +172,12 @@ def _theory_rows(case, dof, theory, potential):
     period = theory.period(dof)
     note = "" if period is not None else f"no oscillation ({theory.dofs[dof].verdict or ''})"
     rows.append(_row(case.name, dof, "linear theory (exact)", period, note=note.strip()))
-    if potential.get(f"{dof}_period") is not None:
-        method = ", ".join(f"{potential[k]}{label}" for k, label in
-                           (("method", ""), ("panels", " panels")) if potential.get(k))
-        rows.append(_row(case.name, dof, "potential flow", float(potential[f"{dof}_period"]),
-                         zeta=_optional(potential.get(f"{dof}_damping_ratio")), note=method))
+    flow = potential.dof(dof) if potential is not None else None
+    if flow is not None and flow.period is not None:
+        method = ", ".join(f"{value}{label}" for value, label in
+                           ((potential.method, ""), (potential.panels, " panels")) if value)
+        rows.append(_row(case.name, dof, "potential flow", float(flow.period),
+                         zeta=_optional(flow.damping_ratio), note=method))
     return rows
 
 

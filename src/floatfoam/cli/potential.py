@@ -33,12 +33,13 @@ def run(args) -> int:
     case = load_case(args.case, args.overrides)
     eq = equilibrium(case)
     coef = radiation_coefficients(case, eq, panels=args.panels, cache=not args.no_cache)
-    summary = potential_summary(case, coefficients=coef)
+    result = potential_summary(case, coefficients=coef)
+    summary = result.to_dict()
     if args.plot is not None:
         from floatfoam.potential.plot import plot_coefficients
 
         path = Path(args.plot) if args.plot else layout.case_build_dir(case.name) / "potential.png"
-        summary["plot"] = str(plot_coefficients(coef, path, summary=summary,
+        summary["plot"] = str(plot_coefficients(coef, path, summary=result,
                                                 title=f"{case.name}: radiation coefficients"))
     if args.json:
         print(dump_json(summary))

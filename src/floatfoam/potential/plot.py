@@ -6,13 +6,15 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam.potential.radiation import DOFS, RadiationCoefficients
+from floatfoam.dofs import NAMES
+from floatfoam.potential.radiation import RadiationCoefficients
+from floatfoam.potential.summary import PotentialSummary
 
 UNITS = {"heave": ("kg", "N·s/m"), "roll": ("kg·m²", "N·m·s"), "pitch": ("kg·m²", "N·m·s")}
 
 
-def plot_coefficients(coef: RadiationCoefficients, path: str | Path, *, summary: dict | None = None,
-                      title: str = "") -> Path:
+def plot_coefficients(coef: RadiationCoefficients, path: str | Path, *,
+                      summary: PotentialSummary | None = None, title: str = "") -> Path:
     """PNG of A_ii(ω) (with A∞ dashed) and B_ii(ω) for the covered DoFs; the natural
     frequencies of ``summary`` (:func:`~floatfoam.potential.radiation.potential_summary`) as
     lines."""
@@ -25,14 +27,14 @@ def plot_coefficients(coef: RadiationCoefficients, path: str | Path, *, summary:
     fig, axes = plt.subplots(2, len(dofs), figsize=(3.6 * len(dofs), 5.6), dpi=120,
                              squeeze=False, sharex=True)
     for col, i in enumerate(dofs):
-        name = DOFS[i]
+        name = NAMES[i]
         unit_a, unit_b = UNITS[name]
         ax_a, ax_b = axes[0, col], axes[1, col]
         ax_a.plot(coef.omega, coef.added_mass[:, i, i], "o-", ms=3, color="tab:blue")
         ax_a.axhline(coef.added_mass_inf[i, i], color="tab:blue", ls="--", lw=0.8,
                      label="A∞")
         ax_b.plot(coef.omega, coef.damping[:, i, i], "o-", ms=3, color="tab:red")
-        omega_n = (summary or {}).get(f"{name}_natural_frequency")
+        omega_n = summary.dof(name).natural_frequency if summary else None
         for ax in (ax_a, ax_b):
             if omega_n:
                 ax.axvline(omega_n, color="0.4", lw=0.8, ls=":", label="ω_n")

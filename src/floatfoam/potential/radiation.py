@@ -27,10 +27,11 @@ from pathlib import Path
 
 import numpy as np
 
+from floatfoam.dofs import NAMES
 from floatfoam.potential import bem_mesh
 from floatfoam.potential import sections as section_bem
+from floatfoam.potential.summary import DofPotential, PotentialSummary
 
-DOFS = ("heave", "roll", "pitch")
 CACHE_VERSION = 1  # bump when the numerics change
 OMEGA_MIN_ND = 0.05  # ω √(ℓ/g), ℓ = half the waterline beam (2D) or √(A_wp/π) (3D)
 OMEGA_MAX_ND = 2.5  # wave length 2πℓ/2.5² ≈ ℓ: ≈ 7 panels per wave length at 800 panels
@@ -246,16 +247,14 @@ def _from_arrays(data, notes) -> RadiationCoefficients:
 
 
 def potential_summary(case, *, coefficients: RadiationCoefficients | None = None,
-                      **kw) -> dict:
+                      **kw) -> PotentialSummary:
     """Natural periods with added mass and radiation damping ratios of a case.
 
     For each degree of freedom i that oscillates (positive stiffness; Le Barbier's verdict for
     roll and pitch), uncoupled: ω_n² = C_ii / (M_ii + A_ii(ω_n)) and
-    ζ = B_ii(ω_n) / (2 ω_n (M_ii + A_ii(ω_n))) (:mod:`floatfoam.potential.resonance`). Keys
-    ``<dof>_period`` (s), ``<dof>_damping_ratio``, ``<dof>_added_mass`` and
-    ``<dof>_radiation_damping`` (SI, about G) for heave, roll and pitch, None where the DoF does
-    not oscillate or is not covered (pitch of a 2D section); plus the undamped period without
-    added mass (``<dof>_period_no_added_mass``), A∞ and what was solved.
+    ζ = B_ii(ω_n) / (2 ω_n (M_ii + A_ii(ω_n))) (:mod:`floatfoam.potential.resonance`): one
+    :class:`~floatfoam.potential.summary.DofPotential` per DoF (None where the DoF does not
+    oscillate or is not covered, e.g. pitch of a 2D section), A∞ and what was solved.
     """
     from floatfoam.bodies.geometry import rotation
     from floatfoam.hydrostatics.theory import equilibrium, stiffness_matrix, verdict
@@ -269,43 +268,42 @@ def potential_summary(case, *, coefficients: RadiationCoefficients | None = None
     oscillates = [stiffness[0, 0] > 0.0] + [
         verdict(stiffness[i, i] / rgv, case.body.size, eq.immersed.exact) == "oscillates"
         for i in (1, 2)]
-    out = {"case": case.name, "method": coef.method, "panels": coef.panels,
-           "depth": None if math.isinf(coef.depth) else coef.depth,
-           "frequencies": {"min": float(coef.omega[0]), "max": float(coef.omega[-1]),
-                           "count": int(len(coef.omega))},
-           "section_length": case.body.length, "notes": list(coef.notes)}
-    for i, dof in enumerate(DOFS):
-        keys = ("period", "damping_ratio", "added_mass", "radiation_damping",
-                "natural_frequency", "period_no_added_mass")
-        out.update({f"{dof}_{k}": None for k in keys})
+    notes = list(coef.notes)
+    per_dof = {}
+    for i, dof in enumerate(NAMES):
+        values = per_dof[dof] = {}
         if not oscillates[i]:
             continue
-        out[f"{dof}_period_no_added_mass"] = 2 * math.pi * math.sqrt(mass[i, i] / stiffness[i, i])
+        values["period_no_added_mass"] = 2 * math.pi * math.sqrt(mass[i, i] / stiffness[i, i])
         if not coef.covered[i]:
             continue
         a_ii, b_ii = coef.added_mass[:, i, i], coef.damping[:, i, i]
         omega_n, inside = natural_frequency(mass[i, i], stiffness[i, i], coef.omega, a_ii)
         if not inside:
-            out["notes"].append(f"{dof}: ω_n = {omega_n:.4g} rad/s is outside the solved "
-                                "frequencies; A and B held at their end values")
+            notes.append(f"{dof}: ω_n = {omega_n:.4g} rad/s is outside the solved "
+                         "frequencies; A and B held at their end values")
         w = min(max(omega_n, coef.omega[0]), coef.omega[-1])
         a_n = float(np.interp(w, coef.omega, a_ii))
         b_n = float(np.interp(w, coef.omega, b_ii))
-        out.update({f"{dof}_period": 2 * math.pi / omega_n,
-                    f"{dof}_natural_frequency": omega_n,
-                    f"{dof}_added_mass": a_n, f"{dof}_radiation_damping": b_n,
-                    f"{dof}_damping_ratio": damping_ratio(mass[i, i], omega_n, a_n, b_n)})
+        values.update(period=2 * math.pi / omega_n, natural_frequency=omega_n, added_mass=a_n,
+                      radiation_damping=b_n,
+                      damping_ratio=damping_ratio(mass[i, i], omega_n, a_n, b_n))
         if math.isfinite(case.depth) and coef.method == "panel-2d":
-            out["notes"].append(f"{dof}: ω²h/g = {omega_n**2 * case.depth / case.g:.3g} at "
-                                "resonance (deep water holds within 0.4 % above π)")
+            notes.append(f"{dof}: ω²h/g = {omega_n**2 * case.depth / case.g:.3g} at "
+                         "resonance (deep water holds within 0.4 % above π)")
     for i, j in ((0, 1), (0, 2), (1, 2)):
         if coef.covered[i] and coef.covered[j]:
             ratios = [abs(m[i, j]) / math.sqrt(abs(m[i, i] * m[j, j]) or 1.0)
                       for m in (stiffness, coef.added_mass_inf + mass)]
             if max(ratios) > COUPLING_NOTE:
-                out["notes"].append(f"{DOFS[i]}–{DOFS[j]} coupling {max(ratios):.0%} (stiffness "
-                                    "or inertia): the periods above are uncoupled")
-    out["added_mass_inf"] = coef.added_mass_inf.tolist()
-    out["stiffness"] = stiffness.tolist()
-    out["mass_matrix"] = mass.tolist()
-    return out
+                notes.append(f"{NAMES[i]}–{NAMES[j]} coupling {max(ratios):.0%} (stiffness "
+                             "or inertia): the periods above are uncoupled")
+    return PotentialSummary(
+        case=case.name, method=coef.method, panels=coef.panels,
+        depth=None if math.isinf(coef.depth) else coef.depth,
+        frequencies={"min": float(coef.omega[0]), "max": float(coef.omega[-1]),
+                     "count": int(len(coef.omega))},
+        section_length=case.body.length, notes=notes,
+        dofs={dof: DofPotential(**values) for dof, values in per_dof.items()},
+        added_mass_inf=coef.added_mass_inf.tolist(), stiffness=stiffness.tolist(),
+        mass_matrix=mass.tolist())
