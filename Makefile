@@ -57,11 +57,11 @@ bench-potential: setup  ## time mesh + BEM (no cache) for every case (target < 3
 	$(PY) scripts/bench_potential.py --threads 1
 
 mesh: setup  ## body STL + gmsh fluid domain of CASE at LEVEL (coarse|medium|fine|all), checked
-	$(PY) meshes/body_surface.py $(CASE) --level $(LEVEL) $(SETARGS)
-	$(PY) meshes/fluid_domain.py $(CASE) --level $(LEVEL) --check $(SETARGS)
+	$(FF) mesh body $(CASE) --level $(LEVEL) $(SETARGS)
+	$(FF) mesh domain $(CASE) --level $(LEVEL) --check $(SETARGS)
 
 mesh-table: setup  ## mesh levels table (Markdown) of every case, with checkMesh quality (minutes)
-	$(PY) meshes/mesh_table.py --domains --check
+	$(FF) mesh table --domains --check
 
 report: setup  ## gather every case (theory, potential flow, finished CFD runs) into build/report/
 	$(FF) report
@@ -69,7 +69,7 @@ report: setup  ## gather every case (theory, potential flow, finished CFD runs) 
 bench-cfd: setup  ## cylinder_heave coarse CFD: cells, steps, wall time, serial vs 2 ranks
 	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2
 
-bench-theory: setup  ## time `floatfoam theory` for every case (target < 1 s each)
+bench-theory: setup  ## time `floatfoam theory` for every case (target ≤ 0.6 s median each)
 	$(PY) scripts/bench_theory.py
 
 clean:  ## remove build/ (rendered runs, meshes, figures)

@@ -253,14 +253,6 @@ def _triangles(node_tags, coords, element_nodes):
     return coords.reshape(-1, 3), index[element_nodes.astype(np.int64)].reshape(-1, 3)
 
 
-def wetted_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
-    """Immersed volume V = ∫ z n_z dS over the wetted surface (no lid needed, the integrand
-    vanishes on z = 0); positive when the normals point out of the body."""
-    a, b, c = (vertices[faces[:, i]] for i in range(3))
-    n_z = 0.5 * np.cross(b - a, c - a)[:, 2]
-    return float((n_z * (a[:, 2] + b[:, 2] + c[:, 2]) / 3.0).sum())
-
-
 def section_panels(body, z_c: float, heel: float, panels: int) -> np.ndarray:
     """Panel nodes (N+1, 2) of a 2D section's wetted contour, earth frame (y, z)."""
     return panel_nodes(wetted_contour(body.section_polygon(), z_c, heel), panels)
