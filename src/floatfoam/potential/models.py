@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from floatfoam.bodies.geometry import rotation
+from floatfoam.dofs import DOFS
 from floatfoam.errors import InputError
 
 MODELS = ("linear", "nonlinear", "cummins")
@@ -35,8 +36,8 @@ def _setup(case):
     g_pos = rotation(eq.heel, eq.trim) @ case.cog + np.array([0.0, 0.0, eq.z_c])
     stiffness = stiffness_matrix(case, eq)
     mass = mass_matrix(case.mass, case.gyradius, rotation(eq.heel, eq.trim))
-    x0 = np.array([case.release["heave"], math.radians(case.release["heel"]),
-                   math.radians(case.release["trim"])])
+    x0 = np.array([math.radians(case.release[d.release_key]) if d.is_angle
+                   else case.release[d.release_key] for d in DOFS])  # heave, roll, pitch
     return eq, g_pos, mass, stiffness, x0
 
 
