@@ -11,7 +11,7 @@ from floatfoam.bodies.geometry import mesh_volume, open_edges
 from floatfoam.bodies.surfaces import stl_body
 from floatfoam.case import load_case
 from floatfoam.errors import InputError
-from floatfoam.layout import list_cases
+from floatfoam.layout import CASES_DIR, list_cases
 from floatfoam.meshing import body_surface, levels
 from floatfoam.meshing.domains import build_domain
 from floatfoam.meshing.planar import progression
@@ -147,21 +147,22 @@ def test_3d_domain(cases, tmp_path):
     assert -0.03 < result["body_patch"]["immersed_error"] < 0.0
 
 
-def test_bad_inputs(cases):
+def test_bad_inputs(cases, tmp_path):
     case = load_case("cylinder_heave")
     with pytest.raises(InputError, match="level"):
         levels.mesh_spec(case, "ultrafine")
-    case.raw["mesh"] = {"cells_side": 40, "gmsh": {"body_cell": 24}}  # others' keys: fine
+    # The [mesh] and [domain] tables are checked once, when the case is loaded.
+    folder = tmp_path / "cyl"
+    folder.mkdir()
+    text = (CASES_DIR / "cylinder_heave" / "case.toml").read_text()
+    (folder / "case.toml").write_text(text + "\n[mesh.gmsh]\nbody_cell = 24\n")
     with pytest.raises(InputError, match="mesh.gmsh.body_cell"):
-        levels.mesh_spec(case, "coarse")
-    case.raw["mesh"] = {}
-    case.raw["domain"] = {"depth": 2.0}
+        load_case(str(folder))
     with pytest.raises(InputError, match="fluid.depth"):
-        levels.tank(case)
-    case.raw["domain"] = {"half_lenght": 2.0}
+        load_case("cylinder_heave", ["domain.depth=2.0"])
     with pytest.raises(InputError, match="half_lenght"):
-        levels.tank(case)
-    case.raw["domain"] = {"half_length": 0.1}
+        load_case("cylinder_heave", ["domain.half_lenght=2.0"])
+    case = load_case("cylinder_heave", ["domain.half_length=0.1"])
     with pytest.raises(InputError, match="domain.half_length"):
         build_domain(case, "coarse", "2d")
     with pytest.raises(InputError, match="not a 2D section"):

@@ -59,7 +59,7 @@ def fake_sources(monkeypatch):
         raw = {"case": {"title": f"Stand-in {folder.name}", "description": "A test case."},
                "release": release, "reference": reference}
         return types.SimpleNamespace(name=folder.name, path=folder, raw=raw, release=release,
-                                     reference=reference)
+                                     reference=reference, **raw["case"])
 
     def theory_summary(case):
         return TheorySummary.from_dict({

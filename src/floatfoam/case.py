@@ -9,6 +9,7 @@ later stages read ([domain], [mesh], [run], [potential]). Any value can be overr
 from __future__ import annotations
 
 import copy
+import difflib
 import math
 import tomllib
 from dataclasses import dataclass, field
@@ -16,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from floatfoam import settings
 from floatfoam.bodies import shapes
 from floatfoam.dofs import RELEASE_KEYS
 from floatfoam.errors import InputError, number
@@ -35,7 +37,8 @@ SHAPES = {
 OPTIONAL_BODY = {"box": ("bilge_radius",), "implicit": ("resolution",), "stl": ("scale",),
                  "conic_cylinder": ()}
 
-# Keys a case file (or --set) may hold, table by table. None: free-form table.
+# Keys a case file (or --set) may hold, table by table (the stages' tables from their typed
+# settings, floatfoam.settings). None: free-form table.
 SCHEMA = {
     "case": {"title", "description"},
     "body": {"shape", *{k for keys in SHAPES.values() for k in keys},
@@ -44,13 +47,10 @@ SCHEMA = {
     "fluid": {"rho", "nu", "g", "depth", "rho_air", "nu_air"},
     "release": set(RELEASE_KEYS),
     "reference": None,
-    "domain": {"half_length", "half_width", "depth", "air_height", "band", "thickness"},
-    "mesh": None,
-    "run": {"end_time", "write_interval", "max_courant", "max_delta_t",
-            "acceleration_relaxation", "inner_distance", "outer_distance", "solver",
-            "static_body", "divergence_courant", "divergence_body_speed"},
-    "potential": {"panels", "omega_min", "omega_max", "frequencies"},
+    **{table: set(settings.keys(cls)) for table, cls in settings.TABLES.items()},
 }
+IMPLICIT_BYTES_PER_POINT = 32  # marching cubes input: F and the x, y, z grids, float64
+MAX_RESOLUTION = 400  # 400³ points take ~2 GiB
 DEFAULTS = {
     "fluid": {"rho": 1000.0, "nu": 1.0e-6, "g": 9.81, "rho_air": 1.0, "nu_air": 1.48e-5},
     "release": dict.fromkeys(RELEASE_KEYS, 0.0),
@@ -60,7 +60,9 @@ DEFAULTS = {
 
 @dataclass
 class Case:
-    """A loaded, validated case. Angles in ``release`` stay in degrees (as in the file)."""
+    """A loaded, validated case. Angles in ``release`` stay in degrees (as in the file);
+    ``settings`` are the stages' typed tables ([run], [mesh], [domain], [potential]); ``raw``
+    is the merged case file, kept only as the run's fingerprint."""
 
     name: str
     path: Path
@@ -74,10 +76,12 @@ class Case:
     g: float
     depth: float
     release: dict = field(default_factory=dict)
-
-    @property
-    def reference(self) -> dict:
-        return self.raw.get("reference", {})
+    rho_air: float = 1.0
+    nu_air: float = 1.48e-5
+    settings: settings.Settings = field(default_factory=settings.Settings)
+    title: str = ""
+    description: str = ""
+    reference: dict = field(default_factory=dict)
 
     @property
     def displacement(self) -> float:
@@ -123,11 +127,16 @@ def apply_override(raw: dict, item: str) -> None:
     if not sep or not dot or not name:
         raise InputError(f"--set {item!r}: valid is table.key=value, e.g. mass.density=500")
     allowed = SCHEMA.get(table, set())
-    known = table in SCHEMA and (allowed is None and name.split(".")[0] in raw.get(table, {})
-                                 or allowed is not None and name in allowed)
+    head = name.split(".")[0]
+    gmsh = table == "mesh" and head == "gmsh" and name.count(".") == 1 \
+        and name.split(".")[1] in settings.keys(settings.GmshSettings)
+    known = table in SCHEMA and (allowed is None and head in raw.get(table, {})
+                                 or allowed is not None and name in allowed or gmsh)
     if not known:
         valid = sorted(f"{t}.{k}" for t, keys in SCHEMA.items() if keys for k in keys)
-        raise InputError(f"--set {key}: unknown key; valid keys are {', '.join(valid)} "
+        near = difflib.get_close_matches(key, valid, n=1)
+        hint = f" (did you mean {near[0]}?)" if near else ""
+        raise InputError(f"--set {key}: unknown key{hint}; valid keys are {', '.join(valid)} "
                          "(and keys already in the case's free-form tables)")
     try:
         value = tomllib.loads(f"v = {text.strip()}")["v"]
@@ -143,14 +152,22 @@ def apply_override(raw: dict, item: str) -> None:
 def _check_tables(raw: dict) -> None:
     for table, values in raw.items():
         if table not in SCHEMA:
-            raise InputError(f"case table [{table}] is unknown; valid tables are "
+            near = difflib.get_close_matches(table, list(SCHEMA), n=1)
+            hint = f" (did you mean [{near[0]}]?)" if near else ""
+            raise InputError(f"case table [{table}] is unknown{hint}; valid tables are "
                              + ", ".join(f"[{t}]" for t in SCHEMA))
+        if not isinstance(values, dict):
+            raise InputError(f"case entry {table} = {values!r}: valid is a table [{table}]")
         allowed = SCHEMA[table]
-        if allowed is not None:
+        if allowed is not None and table not in settings.TABLES:  # those: parse_settings
             for key in values:
                 if key not in allowed:
-                    raise InputError(f"case key {table}.{key} is unknown; valid keys in "
-                                     f"[{table}] are {', '.join(sorted(allowed))}")
+                    raise settings.unknown_key(table, key, allowed)
+    for table in ("body", "mass"):
+        if table not in raw:
+            raise InputError(f"the case has no [{table}] table; valid is a case.toml with "
+                             "[body] (shape and dimensions) and [mass] (mass or density, cog, "
+                             "gyradius)")
 
 
 def _number(cfg: dict, table: str, key: str, *, positive: bool = True) -> float:
@@ -195,7 +212,7 @@ def make_body(cfg: dict, folder: Path) -> shapes.Body:
         return _conic(num("n"), num("m", positive=False), num("height"), num("length"))
     if shape == "box":
         beam, height = num("beam"), num("height")
-        radius = float(cfg["body"].get("bilge_radius", 0.0))
+        radius = number(cfg["body"].get("bilge_radius", 0.0), "body.bilge_radius")
         if not 0.0 <= radius <= min(beam / 2, height):
             raise InputError(f"body.bilge_radius = {radius!r}: valid is 0 ≤ r ≤ "
                              f"min(beam/2, height) = {min(beam / 2, height):g}")
@@ -208,13 +225,42 @@ def make_body(cfg: dict, folder: Path) -> shapes.Body:
     from floatfoam.bodies import surfaces
 
     if shape == "implicit":
-        resolution = int(cfg["body"].get("resolution", 96))
-        if resolution < 8:
-            raise InputError(f"body.resolution = {resolution}: valid is an integer ≥ 8")
-        return surfaces.implicit_body(str(cfg["body"]["expression"]), cfg["body"]["bounds"],
+        resolution = _resolution(cfg["body"].get("resolution", 96))
+        expression = cfg["body"].get("expression")
+        if not isinstance(expression, str):
+            raise InputError(f"body.expression = {expression!r}: valid is a string F(x, y, z), "
+                             "negative inside the body")
+        return surfaces.implicit_body(expression, _bounds(cfg["body"].get("bounds")),
                                       resolution)
-    scale = float(cfg["body"].get("scale", 1.0))
-    return surfaces.stl_body(folder / str(cfg["body"]["path"]), scale)
+    scale = number(cfg["body"].get("scale", 1.0), "body.scale", minimum=0.0)
+    path = cfg["body"].get("path")
+    if not isinstance(path, str):
+        raise InputError(f"body.path = {path!r}: valid is the path of an STL file (a string)")
+    return surfaces.stl_body(folder / path, scale)
+
+
+def _resolution(value) -> int:
+    """body.resolution: points per axis of the implicit surface's grid, within memory."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value) \
+            and value > MAX_RESOLUTION:
+        need = IMPLICIT_BYTES_PER_POINT * float(value) ** 3 / 2**30
+        raise InputError(f"body.resolution = {value!r}: valid is a whole number from 8 to "
+                         f"{MAX_RESOLUTION} ({MAX_RESOLUTION}³ points take ~2 GiB; {value!r} "
+                         f"would need ~{need:.3g} GiB)")
+    resolution = number(value, "body.resolution", minimum=7, integer=True)
+    return resolution
+
+
+def _bounds(value) -> list:
+    """body.bounds: [[x0, y0, z0], [x1, y1, z1]], numbers."""
+    ok = isinstance(value, list) and len(value) == 2 and all(
+        isinstance(row, list) and len(row) == 3 and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+            for v in row) for row in value)
+    if not ok:
+        raise InputError(f"body.bounds = {value!r}: valid is [[x0, y0, z0], [x1, y1, z1]], "
+                         "numbers in m")
+    return value
 
 
 def _conic(n: float, m: float, height: float, length: float) -> shapes.Body:
@@ -243,8 +289,22 @@ def _build(folder: Path, cfg: dict) -> Case:
                          "gyration about axes through G")
     gyradius = _vector(cfg, "mass", "gyradius", positive=True)
     release = {k: _number(cfg, "release", k, positive=False) for k in RELEASE_KEYS}
+    air = {k: _number(cfg, "fluid", k) for k in ("rho_air", "nu_air")}
+    table = cfg.get("case", {})
+    text = {k: table.get(k, "") for k in ("title", "description")}
+    for key, value in text.items():
+        if not isinstance(value, str):
+            raise InputError(f"case.{key} = {value!r}: valid is a string")
+    reference = cfg.get("reference", {})
+    stages = settings.parse_settings(cfg)
+    tank_depth = stages.domain.depth
+    if math.isfinite(depth) and tank_depth is not None and abs(tank_depth - depth) > 1e-9 * depth:
+        raise InputError(f"domain.depth = {tank_depth!r} differs from fluid.depth = {depth!r}: "
+                         "valid is to leave it out (the tank is the fluid's depth) or set it "
+                         "equal")
     return Case(name=folder.name, path=folder, raw=cfg, body=body, mass=mass, cog=cog,
-                gyradius=gyradius, depth=float(depth), release=release, **fluid)
+                gyradius=gyradius, depth=float(depth), release=release, **fluid, **air,
+                settings=stages, reference=reference, **text)
 
 
 def _mass(cfg: dict, body: shapes.Body, rho: float) -> float:

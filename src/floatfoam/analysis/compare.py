@@ -60,7 +60,7 @@ class Comparison:
 
 def excited_dofs(case, reference: dict | None = None) -> list[str]:
     """DoFs the case releases from an offset, or has a reference period or damping for."""
-    release = getattr(case, "release", None) or case.raw.get("release", {})
+    release = case.release
     reference = reference if reference is not None else (case.reference or {})
     moved = {d.name for d in dofs.released(release)}
     return [dof for dof in dofs.NAMES

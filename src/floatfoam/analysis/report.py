@@ -138,10 +138,9 @@ def _write_theory_csv(header, rows, path: Path) -> None:
 
 def _intro(doc: Document, case) -> str:
     """Heading, description and release of a case; returns its title."""
-    table = case.raw.get("case") or {}
-    title = table.get("title", "")
+    title = case.title
     doc.heading(f"{case.name}: {title}" if title else case.name)
-    description = " ".join(str(table.get("description", "")).split())
+    description = " ".join(case.description.split())
     if description:
         doc.paragraph(description)
     release = getattr(case, "release", None) or {}

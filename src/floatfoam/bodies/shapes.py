@@ -173,10 +173,11 @@ class Ellipsoid(Body):
 
 
 class MeshBody(Body):
-    """Any closed body given as a triangle mesh (from an STL or an implicit surface)."""
+    """Any closed body given as a triangle mesh (from an STL or an implicit surface, whose
+    ``expression`` F(x, y, z) it then keeps)."""
 
-    def __init__(self, vertices: np.ndarray, faces: np.ndarray):
-        self.vertices, self.faces = vertices, faces
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray, expression: str | None = None):
+        self.vertices, self.faces, self.expression = vertices, faces, expression
         self.lo, self.hi = vertices.min(axis=0), vertices.max(axis=0)
 
     def surface_mesh(self, resolution=None):

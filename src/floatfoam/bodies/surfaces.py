@@ -73,7 +73,7 @@ def implicit_body(expression: str, bounds, resolution: int = 96) -> MeshBody:
     faces = faces.astype(np.int64)
     if mesh_volume(verts, faces) < 0:
         faces = faces[:, ::-1]
-    return MeshBody(verts, faces)
+    return MeshBody(verts, faces, expression)
 
 
 def stl_body(path: Path, scale: float = 1.0) -> MeshBody:

@@ -18,7 +18,7 @@ from floatfoam import layout
 from floatfoam.case import Case
 from floatfoam.errors import InputError
 from floatfoam.foam import runner
-from floatfoam.foam.render import check_settings, release_state, render, setting
+from floatfoam.foam.render import ogrid_for, release_state, render
 from floatfoam.hydrostatics.theory import Equilibrium
 
 
@@ -45,7 +45,7 @@ def settings_digest(case: Case, level: str) -> str:
 
 def solver_path(case: Case) -> Path:
     """The interFoam to run: floatfoam's rebuilt one unless [run] solver names another."""
-    path = Path(str(case.raw.get("run", {}).get("solver", layout.SOLVER)))
+    path = Path(case.settings.run.solver or layout.SOLVER)
     path = path if path.is_absolute() else layout.ROOT / path
     if not path.is_file():
         raise InputError(f"run.solver = {str(path)!r} does not exist; run `make setup` to build "
@@ -93,7 +93,7 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
 
         equilibrium = solve(case)
     state = release_state(case, equilibrium)
-    check_settings(case, level, state)  # bad input fails here, before anything is written
+    grid = ogrid_for(case, level, state)  # bad input fails here, before anything is written
     run_dir, resumed, finished = prepare(case, level, np_, force, build_dir)
     motion = run_dir / "motion.csv"
     info_file = run_dir / layout.MARKERS / "info.json"
@@ -101,7 +101,7 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
         return RunResult(run_dir, motion, json.loads(info_file.read_text()), False, True)
     label = f"{case.name}/{level}"
     if not layout.step_done(run_dir, "render"):
-        info = render(case, level, run_dir, state, np_=np_)
+        info = render(case, level, run_dir, state, grid, np_=np_)
         info = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in info.items()}
         info_file.write_text(json.dumps(info, indent=2))
         layout.mark_done(run_dir, "render")
@@ -118,9 +118,8 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
         runner.run_app(run_dir, "decomposePar", ["decomposePar", "-force"])
     print(f"[{label}] {info['cells']} cells, {np_} rank(s), {info['end_time']:g} s to simulate; "
           f"log: {run_dir / 'log.interFoam'}")
-    limits = runner.Limits(
-        max_courant=setting(case, "run", "divergence_courant", 20.0),
-        max_body_speed=setting(case, "run", "divergence_body_speed", 10.0))
+    limits = runner.Limits(max_courant=case.settings.run.divergence_courant,
+                           max_body_speed=case.settings.run.divergence_body_speed)
     runner.run_solver(run_dir, [str(solver)], end_time=info["end_time"], np_=np_,
                       motion_csv=motion, limits=limits, label=label,
                       log_name="interFoam")

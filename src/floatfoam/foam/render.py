@@ -17,22 +17,20 @@ from foamlib import FoamFile
 from floatfoam.bodies.geometry import rotation
 from floatfoam.bodies.shapes import EllipticCylinder
 from floatfoam.case import Case
-from floatfoam.errors import InputError, number
+from floatfoam.errors import InputError
 from floatfoam.foam.dictionaries import write_dict, write_field
 from floatfoam.foam.ogrid import OGrid, block_mesh_dict
 from floatfoam.hydrostatics.theory import Equilibrium
 from floatfoam.layout import COMMON_DIR
 from floatfoam.meshing.levels import level_index, refinement_ratio
+from floatfoam.settings import MAX_CELLS, memory_text
 
 
-def setting(case: Case, table: str, key: str, default=None, *, minimum: float = 0.0,
-            integer: bool = False) -> float:
-    """A number of a case table (``default`` when absent), checked to be > ``minimum``; a
-    missing value without a default, or a bad one, is an InputError naming the key."""
-    value = case.raw.get(table, {}).get(key, default)
+def required(value, name: str):
+    """A setting the CFD case cannot do without: an InputError naming it when absent."""
     if value is None:
-        raise InputError(f"{table}.{key} is missing; the CFD case needs it")
-    return number(value, f"{table}.{key}", minimum=minimum, integer=integer)
+        raise InputError(f"{name} is missing; the CFD case needs it")
+    return value
 
 
 def level_factor(case: Case, level: str) -> float:
@@ -58,21 +56,17 @@ def ogrid_for(case: Case, level: str, state: dict) -> OGrid:
     if not (isinstance(body, EllipticCylinder) and body.b == body.c):
         raise InputError(f"body.shape of case {case.name!r}: the CFD mesh is available for "
                          "circular_cylinder only so far")
-    depth = case.depth if math.isfinite(case.depth) else setting(case, "domain", "depth")
-
-    def cells(key, default):
-        return setting(case, "mesh", key, default, integer=True)
-
+    mesh, domain = case.settings.mesh, case.settings.domain
+    depth = case.depth if math.isfinite(case.depth) else required(domain.depth, "domain.depth")
     grid = OGrid(
         radius=body.b, centre_z=state["centre_z"],
-        half_length=setting(case, "domain", "half_length"), depth=depth,
-        air_height=setting(case, "domain", "air_height"),
-        thickness=setting(case, "domain", "thickness"),
-        square=setting(case, "mesh", "square_half_size"),
-        cells_side=cells("cells_side", 40), cells_radial=cells("cells_radial", 16),
-        radial_grading=setting(case, "mesh", "radial_grading", 2.0),
-        cells_horizontal=cells("cells_horizontal", 40),
-        cells_below=cells("cells_below", 30), cells_above=cells("cells_above", 16),
+        half_length=required(domain.half_length, "domain.half_length"), depth=depth,
+        air_height=required(domain.air_height, "domain.air_height"),
+        thickness=required(domain.thickness, "domain.thickness"),
+        square=required(mesh.square_half_size, "mesh.square_half_size"),
+        cells_side=mesh.cells_side, cells_radial=mesh.cells_radial,
+        radial_grading=mesh.radial_grading, cells_horizontal=mesh.cells_horizontal,
+        cells_below=mesh.cells_below, cells_above=mesh.cells_above,
         factor=level_factor(case, level),
     )
     b, zc = grid.square, grid.centre_z
@@ -80,28 +74,43 @@ def ogrid_for(case: Case, level: str, state: dict) -> OGrid:
         raise InputError(f"mesh.square_half_size = {b:g}: valid is between the radius "
                          f"{body.b:g} and the distance from the body to the tank's ends, bottom "
                          "and top")
+    if grid.cell_count() > MAX_CELLS:
+        raise InputError(f"[mesh] cell counts at the {level} level give "
+                         f"{memory_text(grid.cell_count())}: valid is at most {MAX_CELLS:,} "
+                         "cells (lower mesh.cells_* or mesh.refinement_ratio)")
+    inner, outer = motion_distances(case, grid)
+    if not inner < outer:
+        raise InputError(f"run.inner_distance = {inner:g} ≥ run.outer_distance = {outer:g} "
+                         "(one of them defaulted from mesh.square_half_size): valid is "
+                         "inner_distance < outer_distance")
+    required(case.settings.run.end_time, "run.end_time")
     return grid
 
 
-def check_settings(case: Case, level: str, state: dict) -> None:
-    """Every number the rendering reads, checked before anything is written."""
-    ogrid_for(case, level, state)
-    for key, default in (("end_time", None), ("write_interval", 0.1), ("max_courant", 0.5),
-                         ("max_delta_t", 0.005), ("acceleration_relaxation", 0.7),
-                         ("inner_distance", 1.0), ("outer_distance", 1.0),
-                         ("divergence_courant", 20.0), ("divergence_body_speed", 10.0)):
-        setting(case, "run", key, default)
+def motion_distances(case: Case, grid: OGrid) -> tuple[float, float]:
+    """The six-DoF morphing distances: [run] inner and outer, else 0.3 and 1.6 × the O-grid's
+    half-square (rigid inside the inner one, fixed beyond the outer one)."""
+    run = case.settings.run
+    inner = run.inner_distance if run.inner_distance is not None else 0.3 * grid.square
+    outer = run.outer_distance if run.outer_distance is not None else 1.6 * grid.square
+    return inner, outer
 
 
-def render(case: Case, level: str, run_dir: Path, state: dict, *, np_: int = 1) -> dict:
-    """Write the run directory for the release ``state`` (:func:`release_state`); returns what
-    the driver needs (end time, cells, state)."""
-    grid = ogrid_for(case, level, state)
+def write_interval(end_time: float, requested: float) -> float:
+    """The largest interval ≤ ``requested`` that divides ``end_time``, so that the run's last
+    write falls on end_time exactly (interFoam's adjustable time step lands on write times)."""
+    return end_time / math.ceil(end_time / requested - 1e-9)
+
+
+def render(case: Case, level: str, run_dir: Path, state: dict, grid: OGrid, *,
+           np_: int = 1) -> dict:
+    """Write the run directory for the release ``state`` (:func:`release_state`) on ``grid``
+    (:func:`ogrid_for`); returns what the driver needs (end time, cells, state)."""
     run_dir.mkdir(parents=True, exist_ok=True)
     for sub in ("system", "constant"):
         shutil.copytree(COMMON_DIR / sub, run_dir / sub, dirs_exist_ok=True)
     write_dict(run_dir / "system" / "blockMeshDict", block_mesh_dict(grid))
-    end_time = setting(case, "run", "end_time")
+    end_time = required(case.settings.run.end_time, "run.end_time")
     _control(case, run_dir, grid, end_time)
     _fluid(case, run_dir)
     _motion(case, run_dir, grid, state)
@@ -117,13 +126,13 @@ def render(case: Case, level: str, run_dir: Path, state: dict, *, np_: int = 1) 
 
 def _control(case: Case, run_dir: Path, grid: OGrid, end_time: float) -> None:
     control = FoamFile(run_dir / "system" / "controlDict")
+    run = case.settings.run
     control["endTime"] = end_time
-    control["writeInterval"] = setting(case, "run", "write_interval", 0.1)
-    max_co = setting(case, "run", "max_courant", 0.5)
-    control["maxCo"] = max_co
-    control["maxAlphaCo"] = max_co
-    control["maxDeltaT"] = setting(case, "run", "max_delta_t", 0.005) / grid.factor
-    if case.raw.get("run", {}).get("static_body", False):
+    control["writeInterval"] = write_interval(end_time, run.write_interval)
+    control["maxCo"] = run.max_courant
+    control["maxAlphaCo"] = run.max_courant
+    control["maxDeltaT"] = run.max_delta_t / grid.factor
+    if run.static_body:
         pimple = FoamFile(run_dir / "system" / "fvSolution")
         pimple["PIMPLE"]["correctPhi"] = False
         pimple["PIMPLE"]["nOuterCorrectors"] = 1
@@ -136,9 +145,7 @@ def _control(case: Case, run_dir: Path, grid: OGrid, end_time: float) -> None:
 def _fluid(case: Case, run_dir: Path) -> None:
     transport = FoamFile(run_dir / "constant" / "transportProperties")
     transport["water"] = {"transportModel": "Newtonian", "nu": case.nu, "rho": case.rho}
-    fluid = case.raw["fluid"]
-    transport["air"] = {"transportModel": "Newtonian", "nu": float(fluid["nu_air"]),
-                        "rho": float(fluid["rho_air"])}
+    transport["air"] = {"transportModel": "Newtonian", "nu": case.nu_air, "rho": case.rho_air}
     write_dict(run_dir / "constant" / "g",
                 {"dimensions": FoamFile.DimensionSet(length=1, time=-2),
                  "value": [0.0, 0.0, -case.g]}, cls="uniformDimensionedVectorField")
@@ -163,20 +170,20 @@ def _motion(case: Case, run_dir: Path, grid: OGrid, state: dict) -> None:
                         "normal": [1.0, 0.0, 0.0]},
             "rollOnly": {"sixDoFRigidBodyMotionConstraint": "axis", "axis": [1.0, 0.0, 0.0]},
         }
-    run = case.raw.get("run", {})
-    if run.get("static_body", False):  # body held at its release position (still-water test)
+    if case.settings.run.static_body:  # body held at its release position (still-water test)
         write_dict(run_dir / "constant" / "dynamicMeshDict", {"dynamicFvMesh": "staticFvMesh"})
         return
+    inner, outer = motion_distances(case, grid)
     coeffs = {
         "patches": ["body"],
-        "innerDistance": setting(case, "run", "inner_distance", 0.3 * grid.square),
-        "outerDistance": setting(case, "run", "outer_distance", 1.6 * grid.square),
+        "innerDistance": inner,
+        "outerDistance": outer,
         "centreOfMass": cog,
         "centreOfRotation": cog,
         "mass": mass,
         "momentOfInertia": inertia,
         "report": True,
-        "accelerationRelaxation": setting(case, "run", "acceleration_relaxation", 0.7),
+        "accelerationRelaxation": case.settings.run.acceleration_relaxation,
         "solver": {"type": "Newmark"},
         "constraints": constraints,
     }

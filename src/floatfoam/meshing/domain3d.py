@@ -49,8 +49,8 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path) -> dict
     with gmshio.session(f"{case.name}-3d", verbosity=VERBOSITY) as gmsh:
         if isinstance(body, bodies.MeshBody):
             vertices = body.vertices
-            if case.raw["body"].get("shape") == "implicit":
-                func = compile_expression(str(case.raw["body"]["expression"]))
+            if body.expression is not None:  # an implicit surface: nodes back onto F = 0
+                func = compile_expression(body.expression)
                 vertices = relax_on_surface(vertices, body.faces, func, spec.span)
             body_surfaces, volume = _discrete_body(gmsh, vertices, body.faces, where, tank)
         else:

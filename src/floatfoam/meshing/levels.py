@@ -27,25 +27,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from floatfoam.case import Case
-from floatfoam.errors import InputError, number
+from floatfoam.errors import InputError
 from floatfoam.layout import LEVELS
-
-REFINEMENT_RATIO = math.sqrt(2)  # r between consecutive levels (mesh.refinement_ratio)
-MESH_DEFAULTS = {  # [mesh.gmsh]
-    "body_cells": 24,  # coarse: cells across D on the body (surfaces, 2D, wedge)
-    "body_cells_3d": 12,  # coarse: same for 3D volume meshes (r³ per level is costly)
-    "curvature_cells": 48,  # coarse: cells per 2π of turning along curved parts of the body
-    "growth": 1.1,  # largest cell-to-cell size ratio away from the core (2D, wedge)
-    "growth_3d": 1.2,  # size growth per unit distance / cell size in 3D (tetrahedra)
-    "margin": 0.5,  # core block around the body: margin, × D
-}
 
 DOMAIN_DEFAULTS = {  # × the body's span S (its largest dimension), unless a physical value
     "half_length": 20.0,  # tank half-length (y for a 2D section, x in 3D, radius of a wedge)
     "air_height": 3.0,  # air above the free surface
     "deep_depth": 10.0,  # water depth when fluid.depth is infinite
 }
-DOMAIN_KEYS = ("half_length", "half_width", "depth", "air_height", "band", "thickness")
 
 
 @dataclass(frozen=True)
@@ -125,55 +114,33 @@ def level_index(level: str) -> int:
 
 def refinement_ratio(case: Case) -> float:
     """The ratio r between consecutive levels: ``mesh.refinement_ratio`` (default √2), > 1."""
-    mesh = case.raw.get("mesh", {})
-    ratio = _positive(mesh, "mesh", "refinement_ratio") if "refinement_ratio" in mesh \
-        else REFINEMENT_RATIO
-    if ratio <= 1.0:
-        raise InputError(f"mesh.refinement_ratio = {ratio!r}: valid is a number > 1 "
-                         "(Celik et al. 2008 advise > 1.3)")
-    return ratio
+    return case.settings.mesh.refinement_ratio
 
 
 def mesh_spec(case: Case, level: str) -> MeshSpec:
-    """Sizes of ``level`` for ``case``: MESH_DEFAULTS overridden by ``[mesh.gmsh]``, the ratio
-    from ``mesh.refinement_ratio`` (default √2)."""
+    """Sizes of ``level`` for ``case``: ``[mesh.gmsh]`` (defaults and ranges in
+    :class:`floatfoam.settings.GmshSettings`), the ratio ``mesh.refinement_ratio``."""
     index = level_index(level)
-    mesh = case.raw.get("mesh", {})
-    gmsh_table = mesh.get("gmsh", {})
-    if not isinstance(gmsh_table, dict):
-        raise InputError(f"mesh.gmsh = {gmsh_table!r}: valid is a table of "
-                         f"{', '.join(MESH_DEFAULTS)}")
-    cfg = _table(gmsh_table, "mesh.gmsh", MESH_DEFAULTS)
+    cfg = case.settings.mesh.gmsh
     ratio = refinement_ratio(case)
-    for key in ("growth", "growth_3d"):
-        if cfg[key] <= 1.0:
-            raise InputError(f"mesh.gmsh.{key} = {cfg[key]!r}: valid is a growth ratio > 1")
     extents = body_extents(case.body)
     length, span = float(extents.min()), float(extents.max())
     scale = ratio**index
     return MeshSpec(
         level=level, index=index, ratio=ratio, length=length, span=span,
-        body_size=length / (cfg["body_cells"] * scale),
-        body_size_3d=length / (cfg["body_cells_3d"] * scale),
-        curvature_points=cfg["curvature_cells"] * scale,
-        growth=cfg["growth"], growth_3d=cfg["growth_3d"], margin=cfg["margin"] * length)
+        body_size=length / (cfg.body_cells * scale),
+        body_size_3d=length / (cfg.body_cells_3d * scale),
+        curvature_points=cfg.curvature_cells * scale,
+        growth=cfg.growth, growth_3d=cfg.growth_3d, margin=cfg.margin * length)
 
 
 def tank(case: Case) -> Tank:
     """The tank of ``case``: its ``[domain]`` table, defaults scaled by the body's span."""
-    given = case.raw.get("domain", {})
-    for key in given:
-        if key not in DOMAIN_KEYS:
-            raise InputError(f"domain.{key} is unknown; valid keys are {', '.join(DOMAIN_KEYS)}")
-    values = {key: _positive(given, "domain", key) for key in given}
+    values = {k: v for k, v in vars(case.settings.domain).items() if v is not None}
     extents = body_extents(case.body)
     span, length = float(extents.max()), float(extents.min())
     if math.isfinite(case.depth):
-        if "depth" in values and abs(values["depth"] - case.depth) > 1e-9 * case.depth:
-            raise InputError(f"domain.depth = {values['depth']!r} differs from fluid.depth = "
-                             f"{case.depth!r}: valid is to leave it out (the tank is the "
-                             "fluid's depth) or set it equal")
-        values["depth"] = case.depth
+        values["depth"] = case.depth  # the case checked that domain.depth agrees
     half_length = values.get("half_length", DOMAIN_DEFAULTS["half_length"] * span)
     heave = abs(case.release["heave"])
     tilt = math.sin(math.radians(max(abs(case.release["heel"]), abs(case.release["trim"]))))
@@ -207,14 +174,3 @@ def pose(case: Case, which: str = "release", equilibrium=None) -> Pose:
     rel = case.release
     return Pose(base.z_c + rel["heave"], base.heel + math.radians(rel["heel"]),
                 base.trim + math.radians(rel["trim"]))
-
-
-def _table(given: dict, name: str, defaults: dict) -> dict:
-    for key in given:
-        if key not in defaults:
-            raise InputError(f"{name}.{key} is unknown; valid keys are {', '.join(defaults)}")
-    return {**defaults, **{key: _positive(given, name, key) for key in given}}
-
-
-def _positive(table: dict, name: str, key: str) -> float:
-    return number(table[key], f"{name}.{key}", minimum=0.0)

@@ -158,19 +158,19 @@ def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=N
                            ) -> RadiationCoefficients:
     """A(ω), B(ω) and A∞ of a case's body at its equilibrium (adapter over the solvers).
 
-    Options come from the case's free-form ``[potential]`` table when present (``panels``,
+    Options come from the case's ``[potential]`` settings when present (``panels``,
     ``omega_min``/``omega_max`` as ω√(ℓ/g), ``frequencies``), else the module defaults.
     """
     from floatfoam.bodies.geometry import rotation
     from floatfoam.hydrostatics.theory import equilibrium
 
     eq = eq or equilibrium(case)
-    opts = case.raw.get("potential", {})
+    opts = case.settings.potential
     body = case.body
     centre = rotation(eq.heel, eq.trim) @ case.cog + np.array([0.0, 0.0, eq.z_c])
     notes = []
     if body.is_section:
-        panels = int(panels or opts.get("panels", section_bem.DEFAULT_PANELS))
+        panels = int(panels or opts.panels or section_bem.DEFAULT_PANELS)
         nodes = bem_mesh.section_panels(body, eq.z_c, eq.heel, panels)
         half_beam = 0.5 * float(np.ptp(nodes[:, 0]))
         depth = math.inf
@@ -180,7 +180,7 @@ def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=N
         geometry = {"polygon": body.section_polygon(), "nodes": nodes}
         ell = half_beam
     else:
-        panels = int(panels or opts.get("panels", bem_mesh.DEFAULT_PANELS_3D))
+        panels = int(panels or opts.panels or bem_mesh.DEFAULT_PANELS_3D)
         depth = case.depth
         vertices, faces = body.surface_mesh()
         geometry = {"vertices": vertices, "faces": faces}
@@ -188,9 +188,9 @@ def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=N
             else 0.5 * body.size
     if omegas is None:
         omegas = frequency_grid(ell, g=case.g,
-                                omega_min_nd=float(opts.get("omega_min", OMEGA_MIN_ND)),
-                                omega_max_nd=float(opts.get("omega_max", OMEGA_MAX_ND)),
-                                count=int(opts.get("frequencies", FREQUENCIES)))
+                                omega_min_nd=opts.omega_min or OMEGA_MIN_ND,
+                                omega_max_nd=opts.omega_max or OMEGA_MAX_ND,
+                                count=opts.frequencies or FREQUENCIES)
     omegas = np.asarray(omegas, dtype=float)
     if not body.is_section and math.isfinite(depth):
         # Capytaine's finite-depth Green function (Delhommeau) needs kh ≥ 0.1

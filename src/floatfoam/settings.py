@@ -1,0 +1,209 @@
+"""The tables of a case file that stages read, as typed, frozen settings validated once.
+
+``[run]``, ``[mesh]`` (with ``[mesh.gmsh]``), ``[domain]`` and ``[potential]`` each become a
+frozen dataclass when the case is loaded (:func:`parse_settings`): an unknown key is refused with
+the valid ones and a "did you mean", a boolean must be a TOML boolean, every number is checked
+against its range and the relations between numbers are checked (inner < outer distance, write
+interval ≤ end time, ω_min < ω_max). Stages read :class:`Settings`, never the raw TOML.
+
+A field's range is in its metadata: ``minimum`` (exclusive unless ``closed``), ``maximum``
+(inclusive), ``kind`` (float, int, bool, str).
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from dataclasses import dataclass, field, fields
+
+from floatfoam.errors import InputError, number
+
+# Memory of an interFoam run: ~2 kB per cell. Measured with /usr/bin/time -v on serial runs of
+# cylinder_heave (rebuilt interFoam, v1912): peak resident 134.7 MB at 11,280 cells (coarse),
+# 200.3 MB at 45,120 (fine), i.e. 1.94 kB per added cell. The cap keeps a typo from asking for
+# more memory than a workstation has.
+BYTES_PER_CELL = 2000
+MAX_CELLS = 12_000_000  # ~22 GiB at BYTES_PER_CELL: this 24 GiB machine's memory
+
+
+def _spec(default, *, kind=float, minimum=None, closed=False, maximum=None, doc=""):
+    """A settings field: its default and the range :func:`_value` checks."""
+    return field(default=default, metadata={"kind": kind, "minimum": minimum, "closed": closed,
+                                            "maximum": maximum, "doc": doc})
+
+
+@dataclass(frozen=True)
+class RunSettings:
+    """``[run]``: the CFD run (times in s, distances in m)."""
+
+    end_time: float | None = _spec(None, minimum=0.0, doc="simulated time")
+    write_interval: float = _spec(0.1, minimum=0.0)
+    max_courant: float = _spec(0.5, minimum=0.0, maximum=5.0)
+    max_delta_t: float = _spec(0.005, minimum=0.0, doc="at the coarse level")
+    acceleration_relaxation: float = _spec(0.7, minimum=0.0, maximum=1.0)
+    inner_distance: float | None = _spec(None, minimum=0.0)
+    outer_distance: float | None = _spec(None, minimum=0.0)
+    solver: str | None = _spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
+    static_body: bool = _spec(False, kind=bool, doc="hold the body still (still-water test)")
+    divergence_courant: float = _spec(20.0, minimum=0.0)
+    divergence_body_speed: float = _spec(10.0, minimum=0.0)
+
+    def check(self) -> None:
+        if self.end_time is not None and self.write_interval > self.end_time:
+            raise InputError(f"run.write_interval = {self.write_interval:g} > run.end_time = "
+                             f"{self.end_time:g}: valid is write_interval ≤ end_time")
+        inner, outer = self.inner_distance, self.outer_distance
+        if inner is not None and outer is not None and not inner < outer:
+            raise InputError(f"run.inner_distance = {inner:g} ≥ run.outer_distance = {outer:g}: "
+                             "valid is inner_distance < outer_distance (the mesh moves rigidly "
+                             "inside the inner one and not at all beyond the outer one)")
+
+
+@dataclass(frozen=True)
+class GmshSettings:
+    """``[mesh.gmsh]``: sizes of the gmsh meshes at the coarse level (meshing.levels)."""
+
+    body_cells: float = _spec(24, minimum=0.0, maximum=2000)
+    body_cells_3d: float = _spec(12, minimum=0.0, maximum=500)
+    curvature_cells: float = _spec(48, minimum=0.0, maximum=5000)
+    growth: float = _spec(1.1, minimum=1.0, maximum=3.0)
+    growth_3d: float = _spec(1.2, minimum=1.0, maximum=3.0)
+    margin: float = _spec(0.5, minimum=0.0, maximum=50.0)
+
+    def check(self) -> None:
+        pass
+
+
+@dataclass(frozen=True)
+class MeshSettings:
+    """``[mesh]``: the refinement ratio between levels and the blockMesh O-grid's counts (at the
+    coarse level); ``[mesh.gmsh]`` the gmsh meshes'."""
+
+    refinement_ratio: float = _spec(math.sqrt(2.0), minimum=1.0, maximum=4.0)
+    square_half_size: float | None = _spec(None, minimum=0.0)
+    cells_side: int = _spec(40, kind=int, minimum=0, maximum=20000)
+    cells_radial: int = _spec(16, kind=int, minimum=0, maximum=20000)
+    radial_grading: float = _spec(2.0, minimum=0.0, maximum=1000.0)
+    cells_horizontal: int = _spec(40, kind=int, minimum=0, maximum=20000)
+    cells_below: int = _spec(30, kind=int, minimum=0, maximum=20000)
+    cells_above: int = _spec(16, kind=int, minimum=0, maximum=20000)
+    gmsh: GmshSettings = field(default_factory=GmshSettings)
+
+    def check(self) -> None:
+        pass
+
+
+@dataclass(frozen=True)
+class DomainSettings:
+    """``[domain]``: the tank around the body (m); absent values scale with the body."""
+
+    half_length: float | None = _spec(None, minimum=0.0)
+    half_width: float | None = _spec(None, minimum=0.0)
+    depth: float | None = _spec(None, minimum=0.0)
+    air_height: float | None = _spec(None, minimum=0.0)
+    band: float | None = _spec(None, minimum=0.0)
+    thickness: float | None = _spec(None, minimum=0.0)
+
+    def check(self) -> None:
+        pass
+
+
+@dataclass(frozen=True)
+class PotentialSettings:
+    """``[potential]``: the panel count and the frequencies (ω√(ℓ/g)) of potential flow; absent
+    values take the module defaults."""
+
+    panels: int | None = _spec(None, kind=int, minimum=7, maximum=20000)
+    omega_min: float | None = _spec(None, minimum=0.0)
+    omega_max: float | None = _spec(None, minimum=0.0)
+    frequencies: int | None = _spec(None, kind=int, minimum=1, maximum=2000)
+
+    def check(self) -> None:
+        if self.omega_min is not None and self.omega_max is not None \
+                and not self.omega_min < self.omega_max:
+            raise InputError(f"potential.omega_min = {self.omega_min:g} ≥ potential.omega_max = "
+                             f"{self.omega_max:g}: valid is omega_min < omega_max")
+
+
+@dataclass(frozen=True)
+class Settings:
+    """The settings of every stage of a case."""
+
+    run: RunSettings = field(default_factory=RunSettings)
+    mesh: MeshSettings = field(default_factory=MeshSettings)
+    domain: DomainSettings = field(default_factory=DomainSettings)
+    potential: PotentialSettings = field(default_factory=PotentialSettings)
+
+
+TABLES = {"run": RunSettings, "mesh": MeshSettings, "domain": DomainSettings,
+          "potential": PotentialSettings}
+
+
+def keys(cls) -> list[str]:
+    """The keys a settings table accepts."""
+    return [f.name for f in fields(cls)]
+
+
+def unknown_key(name: str, key: str, valid) -> InputError:
+    """The error for an unknown key: the valid ones and the nearest, if any is near."""
+    valid = sorted(valid)
+    near = difflib.get_close_matches(key, valid, n=1)
+    hint = f" (did you mean {name}.{near[0]}?)" if near else ""
+    return InputError(f"{name}.{key} is unknown{hint}; valid keys in [{name}] are "
+                      f"{', '.join(valid)}")
+
+
+def _value(value, name: str, meta: dict):
+    kind = meta["kind"]
+    if kind is bool:
+        if not isinstance(value, bool):
+            raise InputError(f"{name} = {value!r}: valid is true or false (a TOML boolean)")
+        return value
+    if kind is str:
+        if not isinstance(value, str) or not value:
+            raise InputError(f"{name} = {value!r}: valid is a non-empty string")
+        return value
+    low = meta["minimum"]
+    result = number(value, name, minimum=None if meta["closed"] else low,
+                    integer=kind is int)
+    if meta["closed"] and low is not None and result < low:
+        raise InputError(f"{name} = {value!r}: valid is a number ≥ {low:g}")
+    high = meta["maximum"]
+    if high is not None and result > high:
+        lo_text = "" if low is None else f"{low:g} < "
+        what = "a whole number" if kind is int else "a number"
+        raise InputError(f"{name} = {value!r}: valid is {what} {lo_text}x ≤ {high:g}")
+    return result
+
+
+def parse_table(cls, given, name: str):
+    """The settings ``cls`` of the table ``name`` (a dict from the case file)."""
+    if given is None:
+        given = {}
+    if not isinstance(given, dict):
+        raise InputError(f"[{name}] = {given!r}: valid is a table of {', '.join(keys(cls))}")
+    specs = {f.name: f for f in fields(cls)}
+    values = {}
+    for key, value in given.items():
+        spec = specs.get(key)
+        if spec is None:
+            raise unknown_key(name, key, specs)
+        if key == "gmsh" and cls is MeshSettings:
+            values[key] = parse_table(GmshSettings, value, f"{name}.gmsh")
+        else:
+            values[key] = _value(value, f"{name}.{key}", spec.metadata)
+    settings = cls(**values)
+    settings.check()
+    return settings
+
+
+def parse_settings(cfg: dict) -> Settings:
+    """The :class:`Settings` of a case's merged tables."""
+    return Settings(**{table: parse_table(cls, cfg.get(table), table)
+                       for table, cls in TABLES.items()})
+
+
+def memory_text(cells: float) -> str:
+    """What ``cells`` interFoam cells would need in memory, in words."""
+    gib = cells * BYTES_PER_CELL / 2**30
+    return f"{cells:.3g} cells, ~{gib:.3g} GiB for interFoam at ~{BYTES_PER_CELL} B per cell"
