@@ -10,7 +10,7 @@ from floatfoam.cli import main
 
 JSON_KEYS = {"draft", "displaced_volume", "waterplane_area", "KB", "BM_roll", "BM_pitch",
              "GM_roll", "GM_pitch", "heave_period", "roll_period", "pitch_period",
-             "verdict_roll", "verdict_pitch", "memoir"}
+             "verdict_roll", "verdict_pitch", "memoir", "memoir_printed"}
 VERDICTS = {"oscillates", "neutral", "capsizes"}
 
 

@@ -3,7 +3,8 @@
 Rows, in this order, for each degree of freedom the case releases (``[release]`` heave, heel,
 trim → heave, roll, pitch) or lists a reference for:
 
-* **memoir formula**: Le Barbier's printed formula (``theory_summary(case).memoir``);
+* **memoir formula**: Le Barbier's method, corrected (``theory_summary(case).memoir``), and
+  **memoir as printed** (``.memoir_printed``, errata included);
 * **linear theory (exact)**: the exact hydrostatic linear theory, undamped natural period;
 * **potential flow**: added mass and radiation damping (when :mod:`floatfoam.potential.radiation` is
   available for the case);
@@ -169,6 +170,11 @@ def _theory_rows(case, dof, theory, potential):
     if memoir.get(f"{dof}_period") is not None:
         label = f"memoir ({memoir['source']})" if memoir.get("source") else "memoir formula"
         rows.append(_row(case.name, dof, label, float(memoir[f"{dof}_period"])))
+    printed = theory.memoir_printed or {}
+    if printed.get(f"{dof}_period") is not None:
+        errata = "; ".join(printed.get("errata") or [])
+        rows.append(_row(case.name, dof, "memoir as printed", float(printed[f"{dof}_period"]),
+                         note=f"errata: {errata}" if errata else "formulas right as printed"))
     period = theory.period(dof)
     note = "" if period is not None else f"no oscillation ({theory.dofs[dof].verdict or ''})"
     rows.append(_row(case.name, dof, "linear theory (exact)", period, note=note.strip()))

@@ -5,6 +5,8 @@
 * :mod:`~floatfoam.hydrostatics.closed_forms`: the exact hydrostatics of the memoir's bodies;
 * :mod:`~floatfoam.hydrostatics.theory`: equilibrium, stiffness, GM, verdicts, linear periods;
 * :mod:`~floatfoam.hydrostatics.gz`: the righting-arm curve to large angles;
-* :mod:`~floatfoam.hydrostatics.memoir`: the memoir's formulas, body by body;
-  :mod:`~floatfoam.hydrostatics.memoir_case` evaluates them for a case.
+* :mod:`~floatfoam.hydrostatics.memoir`: the memoir's method, body by body (the corrected
+  formulas); :mod:`~floatfoam.hydrostatics.printed` and
+  :mod:`~floatfoam.hydrostatics.printed_ellipsoid`: its formulas as printed, errata included;
+  :mod:`~floatfoam.hydrostatics.memoir_case` evaluates both for a case.
 """

@@ -4,13 +4,14 @@ Source: Le Barbier, "Essai sur les oscillations et l'équilibre des corps flotta
 mathématiques pures et appliquées (Gergonne) 8 (1817-1818) 37 ff. Page numbers below are the
 printed ones; the Wikisource scan page is printed page + 6 (p. 48 = djvu/54).
 
-Provenance warning. Every stored copy of the memoir that could be consulted (French Wikisource,
-djvu/43-66) has its mathematics stripped: the prose survives, the formulas do not. The functions
-below therefore evaluate the results of the memoir's *stated method* (linearised hydrostatics
-without the fluid's resistance or inertia, docs/memoir.md section 2), not the printed formulas.
-Each result says so: ``source == "reconstructed"`` and ``verified_against_print is False``.
-Where the surviving prose states a result in words (circle and sphere, p. 53) it agrees with
-these functions; docs/memoir.md gives the derivations and what to check against the page images.
+These functions evaluate the results of the memoir's *stated method* (linearised hydrostatics
+without the fluid's resistance or inertia, docs/memoir.md section 2), derived again here: they
+are the *corrected* formulas. Each result says so: ``source == "reconstructed"`` and
+``verified_against_print is False`` (this module is not the print). The formulas as printed,
+errata included, are in :mod:`floatfoam.hydrostatics.printed` and
+:mod:`~floatfoam.hydrostatics.printed_ellipsoid`; where the print is right (circle, conic
+cylinders, sphere) they agree with these functions to round-off; where it is wrong (the
+ellipsoid of revolution, pp. 60-61) these give the corrected values (docs/memoir.md, errata).
 
 Linear theory used throughout (the body's mass M equals the displaced mass rho*V):
 
@@ -87,8 +88,8 @@ def circular_cylinder(radius: float, density_ratio: float, kg: float, gyradius: 
 
     Source: p. 48 (djvu/54), eqs (9) and (10), linearised from (7)-(8); verdict in words on
     p. 53 (djvu/59): oscillates, stays or capsizes as the height of G is below, at or above the
-    radius. Reconstructed, not verified against the print (formulas stripped in every stored
-    copy); the verbal verdict of p. 53 agrees with this result.
+    radius. Derived here; the printed (9), (10) and the p. 53 criterion agree
+    (:mod:`floatfoam.hydrostatics.printed`).
 
     Parameters
     ----------
@@ -147,7 +148,7 @@ def conic_cylinder(n: float, m: float, draft: float, kg: float, gyradius: float,
     circle of its vertical semi-axis stretched sideways (docs/memoir.md section 5).
 
     Source: general formula p. 50 (djvu/56), applied to ellipse and circle p. 51 (djvu/57).
-    Reconstructed, not verified against the print (formulas stripped in every stored copy).
+    Derived here; the printed pp. 49-51 formulas agree.
 
     Parameters
     ----------
@@ -208,7 +209,7 @@ def sphere(radius: float, density_ratio: float, kg: float, gyradius: float, *,
         omega_r**2 = g (a - KG) / K**2.
 
     Source: p. 52 (djvu/58), same notation as the cylinder; verdict in words p. 53 (djvu/59).
-    Reconstructed, not verified against the print; the verbal verdict of p. 53 agrees.
+    Derived here; the printed p. 52 formulas and the p. 53 criterion agree.
 
     Parameters
     ----------
@@ -240,13 +241,13 @@ def ellipsoid_of_revolution(a: float, c: float, density_ratio: float, kg: float,
         KM - c = 3 (a**2 - c**2) (2c - T)**2 / (4 c**2 (3c - T)),
         omega_h**2 = 3 g (2c - T) / (T (3c - T)),   omega_r**2 = g (KM - KG) / K**2.
 
-    An oblate body (a > c) has its metacentre above the centre, a prolate one below; a mix-up
-    of a and c reverses that (see :func:`ellipsoid_stability_limit`).
+    An oblate body (a > c) has its metacentre above the centre, a prolate one below.
 
-    Source: linearised equations (11), pp. 57-58 (djvu/63-64); ellipsoid of revolution and its
-    oscillate / stay / capsize criterion p. 60 (djvu/66), continued on p. 61 (not stored).
-    Reconstructed, not verified against the print: whether the printed criterion exchanges a
-    and c cannot be decided from the stored copies.
+    Source: linearised equations (11)-(12), pp. 54-58; ellipsoid of revolution and its
+    oscillate / stay / capsize criterion pp. 60-61. Derived here: these are the corrected
+    formulas. The printed roll formula and criterion are wrong for a != c
+    (:func:`floatfoam.hydrostatics.printed_ellipsoid.p60_revolution_roll_omega2_as_printed`,
+    docs/memoir.md errata).
 
     Parameters
     ----------
@@ -286,9 +287,9 @@ def ellipsoid_stability_limit(a: float, c: float, draft: float) -> float:
         KM - c = 3 (a**2 - c**2) (2c - T)**2 / (4 c**2 (3c - T)),   0 < T < 2c.
 
     The body oscillates, stays or capsizes as G's height above the centre is below, at or
-    above this value (p. 60, djvu/66, in words). Exchanging a and c flips the sign of the
-    factor (a**2 - c**2): that is how an a <-> c mix-up in a printed criterion would show.
-    Derived here (docs/memoir.md section 7); not verified against the print.
+    above this value (pp. 60-61). Derived here (docs/memoir.md section 7): the corrected
+    criterion; the printed one is
+    :func:`floatfoam.hydrostatics.printed_ellipsoid.p61_revolution_kg_limit_as_printed`.
     """
     a, c, T = _positive("a", a), _positive("c", c), _positive("draft", draft)
     if T >= 2.0 * c:

@@ -29,8 +29,10 @@ class DofTheory:
 @dataclass(frozen=True)
 class TheorySummary:
     """The linear hydrostatic theory of a case (SI units, seconds; equilibrium angles in
-    degrees). ``memoir`` holds the memoir's values where it covers the body (keys as in
-    :meth:`to_dict`, plus ``source`` and ``reference``)."""
+    degrees). ``memoir`` holds the memoir's values where it covers the body, by its method
+    derived again (the corrected formulas; keys as in :meth:`to_dict`, plus ``source`` and
+    ``reference``); ``memoir_printed`` its formulas as printed, errata included (see
+    :func:`floatfoam.hydrostatics.memoir_case.memoir_printed_values`)."""
 
     case: str
     body: str
@@ -46,6 +48,7 @@ class TheorySummary:
     stiffness: list
     exact: bool
     memoir: dict = field(default_factory=dict)
+    memoir_printed: dict = field(default_factory=dict)
 
     def period(self, dof: str) -> float | None:
         """Undamped natural period of ``dof`` (s), None when it does not oscillate."""
@@ -63,7 +66,7 @@ class TheorySummary:
         out.update({f"{d}_period": self.dofs[d].period for d in NAMES})
         out.update({f"verdict_{d}": self.dofs[d].verdict for d in ANGULAR})
         out.update(equilibrium=self.equilibrium, stiffness=self.stiffness, exact=self.exact,
-                   memoir=self.memoir)
+                   memoir=self.memoir, memoir_printed=self.memoir_printed)
         return out
 
     @classmethod
@@ -74,4 +77,5 @@ class TheorySummary:
         scalars = ("case", "body", "section_length", "mass", "draft", "displaced_volume",
                    "waterplane_area", "KB", "KG", "stiffness", "exact")
         return cls(**{k: data.get(k) for k in scalars}, dofs=dofs,
-                   equilibrium=data.get("equilibrium") or {}, memoir=data.get("memoir") or {})
+                   equilibrium=data.get("equilibrium") or {}, memoir=data.get("memoir") or {},
+                   memoir_printed=data.get("memoir_printed") or {})

@@ -145,7 +145,11 @@ def theory_summary(case: Case, eq: Equilibrium | None = None) -> TheorySummary:
     i_xx, i_yy, _ = imm.waterplane_inertia
     g_earth = rotation(eq.heel, eq.trim) @ case.cog + np.array([0.0, 0.0, eq.z_c])
     draft, kg = -float(min(_lowest_point(case, eq), 0.0)), float(case.cog[2] - keel)
-    from floatfoam.hydrostatics.memoir_case import memoir_values
+    from floatfoam.hydrostatics.memoir_case import memoir_printed_values, memoir_values
+
+    printed = memoir_printed_values(case, kg=kg, draft=draft)
+    if printed:
+        printed["verdict_roll_matches_exact"] = printed["verdict_roll"] == verdicts[0]
 
     return TheorySummary(
         case=case.name,
@@ -170,6 +174,7 @@ def theory_summary(case: Case, eq: Equilibrium | None = None) -> TheorySummary:
         stiffness=c.tolist(),
         exact=imm.exact,
         memoir=memoir_values(case, kg=kg, draft=draft),
+        memoir_printed=printed,
     )
 
 
