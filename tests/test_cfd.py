@@ -11,6 +11,7 @@ import time
 
 import numpy as np
 import pytest
+from procutil import locked, processes_in
 
 from floatfoam.analysis.decay import analyse_decay, decay_dict
 from floatfoam.case import load_case
@@ -106,9 +107,14 @@ def test_interrupted_run_resumes(tmp_path):
         assert child.poll() is None and time.monotonic() < deadline
         time.sleep(0.2)
     time.sleep(1.0)  # let the solver finish writing 0.2
-    os.killpg(child.pid, signal.SIGKILL)
+    assert processes_in(run_dir)  # interFoam runs there, in a process group of its own
+    os.killpg(child.pid, signal.SIGKILL)  # the driver only: its solver must follow it
     child.wait()
     assert not step_done(run_dir, "finished")
+    deadline = time.monotonic() + 15  # the watchdog stops it: SIGTERM, SIGKILL after 5 s
+    while processes_in(run_dir) or locked(tmp_path / "cylinder_heave" / ".coarse.lock"):
+        assert time.monotonic() < deadline, "the solver outlived its SIGKILLed driver"
+        time.sleep(0.2)
 
     result = run_case(load_case("cylinder_heave", ["run.end_time=0.5"]), "coarse", 1,
                       build_dir=tmp_path)

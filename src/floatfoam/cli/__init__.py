@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
 from floatfoam.errors import InputError
 
-COMMANDS = ["theory", "gz", "mesh", "run", "analyse", "report", "potential", "decay_model"]
+COMMANDS = ["theory", "gz", "mesh", "run", "batch", "analyse", "report", "potential",
+            "decay_model"]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -28,15 +30,43 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run one command. Every error is one line on stderr, never a traceback (unless --debug):
+    exit 2 for bad input (and a folder that cannot be written), 1 for a failure, 130 when
+    interrupted, 141 when the reader of the output went away (``| head``)."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    prog = f"floatfoam {args.command}"
     try:
         return int(args.func(args) or 0)
     except InputError as err:
         if args.debug:
             raise
-        print(f"floatfoam {args.command}: error: {err}", file=sys.stderr)
+        print(f"{prog}: error: {err}", file=sys.stderr)
         return 2
+    except BrokenPipeError:
+        # the reader closed the pipe (floatfoam theory X | head): stop quietly, like cat does
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 141
+    except KeyboardInterrupt:
+        if args.debug:
+            raise
+        print(f"{prog}: interrupted", file=sys.stderr)
+        return 130
+    except OSError as err:
+        if args.debug:
+            raise
+        where = f" {err.filename}" if err.filename else ""
+        print(f"{prog}: error: cannot use{where}: {err.strerror or err}; valid is a readable "
+              "case and a writable build folder (FLOATFOAM_BUILD names another)",
+              file=sys.stderr)
+        return 2
+    except Exception as err:  # noqa: BLE001 - the last guard against a traceback
+        if args.debug:
+            raise
+        print(f"{prog}: internal error: {type(err).__name__}: {err} (rerun with --debug for "
+              "the traceback, and please report it)", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 from floatfoam.cli.common import add_case_arguments
 from floatfoam.errors import InputError
 from floatfoam.layout import LEVELS
+
+EXIT_LOCKED = 75  # EX_TEMPFAIL (sysexits.h): another run holds the directory, try later
 
 
 def register(sub) -> None:
@@ -14,14 +17,21 @@ def register(sub) -> None:
     add_case_arguments(p)
     p.add_argument("--level", default="coarse", help=f"mesh level: {', '.join(LEVELS)}")
     p.add_argument("--np", type=int, default=1, help="MPI ranks (default 1: serial)")
+    p.add_argument("--hostfile", type=Path, default=None, metavar="FILE",
+                   help="Open MPI hostfile for the ranks (default: this machine)")
     p.add_argument("--force", action="store_true",
                    help="move an earlier run of this case and level aside and run anew")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
+    """Exit codes: 0 done, 1 the run failed (log and fatal error in the message), 2 bad input,
+    75 another run holds the run directory, 128 + signal when interrupted (130 SIGINT,
+    143 SIGTERM, 129 SIGHUP)."""
     from floatfoam.case import load_case
     from floatfoam.foam.driver import run_case
+    from floatfoam.foam.processes import SignalInterruptError, signals_interrupt
+    from floatfoam.foam.runlock import RunLockedError
     from floatfoam.foam.runner import RunError
     from floatfoam.hydrostatics.theory import equilibrium
 
@@ -30,10 +40,20 @@ def run(args) -> int:
         raise InputError(f"--level {args.level!r}: valid levels are {', '.join(LEVELS)}")
     eq = equilibrium(case)  # solved once, handed to the rendering and the summary
     try:
-        result = run_case(case, args.level, args.np, args.force, equilibrium=eq)
+        with signals_interrupt():
+            result = run_case(case, args.level, args.np, args.force, equilibrium=eq,
+                              hostfile=args.hostfile)
     except RunError as err:
         print(f"floatfoam run: {err}", file=sys.stderr)
         return 1
+    except RunLockedError as err:
+        print(f"floatfoam run: {err}", file=sys.stderr)
+        return EXIT_LOCKED
+    except SignalInterruptError as err:
+        where = f"at t = {err.time:g} s" if err.time is not None else "before the solver ran"
+        print(f"floatfoam run: interrupted ({err}) {where}; run the same command to resume",
+              file=sys.stderr)
+        return err.exit_code
     if result.already_finished:
         print(f"{result.run_dir} holds a finished run (use --force to run it again).")
     print_summary(case, result, eq)

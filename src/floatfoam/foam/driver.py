@@ -10,7 +10,10 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
+import re
 import shutil
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -19,6 +22,8 @@ from floatfoam.case import Case
 from floatfoam.errors import InputError
 from floatfoam.foam import runner
 from floatfoam.foam.render import ogrid_for, release_state, render
+from floatfoam.foam.runlock import RunLock, lock_path
+from floatfoam.foam.timedirs import set_aside_incomplete
 from floatfoam.hydrostatics.theory import Equilibrium
 
 
@@ -80,13 +85,14 @@ def prepare(case: Case, level: str, np_: int, force: bool,
 
 
 def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = False,
-             build_dir: Path | None = None, *, equilibrium: Equilibrium | None = None
-             ) -> RunResult:
+             build_dir: Path | None = None, *, equilibrium: Equilibrium | None = None,
+             hostfile: Path | None = None) -> RunResult:
     """Run ``case`` at ``level`` on ``np_`` MPI ranks (see the module docstring); the run
     directory is ``<build_dir>/<case>/<level>`` (:func:`floatfoam.layout.build_dir` by
-    default). ``equilibrium`` is the case's (solved here when not given)."""
-    if np_ < 1:
-        raise InputError(f"--np {np_}: valid is a whole number ≥ 1")
+    default). ``equilibrium`` is the case's (solved here when not given); ``hostfile`` goes to
+    mpirun. Everything is checked before anything is written; the run holds the run
+    directory's lock (:mod:`floatfoam.foam.runlock`) from start to end."""
+    check_ranks(np_, hostfile)
     solver = solver_path(case)
     if equilibrium is None:
         from floatfoam.hydrostatics.theory import equilibrium as solve
@@ -94,34 +100,74 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
         equilibrium = solve(case)
     state = release_state(case, equilibrium)
     grid = ogrid_for(case, level, state)  # bad input fails here, before anything is written
-    run_dir, resumed, finished = prepare(case, level, np_, force, build_dir)
-    motion = run_dir / "motion.csv"
-    info_file = run_dir / layout.MARKERS / "info.json"
-    if finished:
-        return RunResult(run_dir, motion, json.loads(info_file.read_text()), False, True)
     label = f"{case.name}/{level}"
-    if not layout.step_done(run_dir, "render"):
-        info = render(case, level, run_dir, state, grid, np_=np_)
-        info = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in info.items()}
-        info_file.write_text(json.dumps(info, indent=2))
-        layout.mark_done(run_dir, "render")
-    info = json.loads(info_file.read_text())
-    if resumed:
-        print(f"[{label}] resuming the run in {run_dir}")
-    runner.run_app(run_dir, "blockMesh", ["blockMesh"])
-    if not layout.step_done(run_dir, "fields"):
-        shutil.rmtree(run_dir / "0", ignore_errors=True)
-        shutil.copytree(run_dir / "0.orig", run_dir / "0")
-        layout.mark_done(run_dir, "fields")
-    runner.run_app(run_dir, "setAlphaField", ["setAlphaField"])
-    if np_ > 1:
-        runner.run_app(run_dir, "decomposePar", ["decomposePar", "-force"])
-    print(f"[{label}] {info['cells']} cells, {np_} rank(s), {info['end_time']:g} s to simulate; "
-          f"log: {run_dir / 'log.interFoam'}")
-    limits = runner.Limits(max_courant=case.settings.run.divergence_courant,
-                           max_body_speed=case.settings.run.divergence_body_speed)
-    runner.run_solver(run_dir, [str(solver)], end_time=info["end_time"], np_=np_,
-                      motion_csv=motion, limits=limits, label=label,
-                      log_name="interFoam")
-    layout.mark_done(run_dir, layout.FINISHED)
-    return RunResult(run_dir, motion, info, resumed)
+    check_path(layout.run_dir(case.name, level, build_dir))
+    with RunLock(lock_path(case.name, level, build_dir), label) as lock:
+        if lock.stale_holder():
+            print(f"[{label}] the run of PID {lock.stale_holder()} ended without finishing; "
+                  "this run takes its place", file=sys.stderr)
+        run_dir, resumed, finished = prepare(case, level, np_, force, build_dir)
+        motion = run_dir / "motion.csv"
+        info_file = run_dir / layout.MARKERS / "info.json"
+        if finished:
+            return RunResult(run_dir, motion, json.loads(info_file.read_text()), False, True)
+        if not layout.step_done(run_dir, "render"):
+            info = render(case, level, run_dir, state, grid, np_=np_)
+            info = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in info.items()}
+            info_file.write_text(json.dumps(info, indent=2))
+            layout.mark_done(run_dir, "render")
+        info = json.loads(info_file.read_text())
+        if resumed:
+            print(f"[{label}] resuming the run in {run_dir}")
+            for moved in set_aside_incomplete(run_dir, moving=not case.settings.run.static_body):
+                print(f"[{label}] an incomplete time folder (a write cut short) is set aside: "
+                      f"{moved}", file=sys.stderr)
+        runner.run_app(run_dir, "blockMesh", ["blockMesh"])
+        if not layout.step_done(run_dir, "fields"):
+            shutil.rmtree(run_dir / "0", ignore_errors=True)
+            shutil.copytree(run_dir / "0.orig", run_dir / "0")
+            layout.mark_done(run_dir, "fields")
+        runner.run_app(run_dir, "setAlphaField", ["setAlphaField"])
+        if np_ > 1:
+            runner.run_app(run_dir, "decomposePar", ["decomposePar", "-force"])
+        print(f"[{label}] {info['cells']} cells, {np_} rank(s), {info['end_time']:g} s to "
+              f"simulate; log: {run_dir / 'log.interFoam'}")
+        limits = runner.Limits(max_courant=case.settings.run.divergence_courant,
+                               max_body_speed=case.settings.run.divergence_body_speed)
+        runner.run_solver(run_dir, [str(solver)], end_time=info["end_time"], np_=np_,
+                          hostfile=hostfile, motion_csv=motion, limits=limits, label=label,
+                          log_name="interFoam", keep_fds=(lock.fd,))
+        layout.mark_done(run_dir, layout.FINISHED)
+        return RunResult(run_dir, motion, info, resumed)
+
+
+def check_ranks(np_: int, hostfile: Path | None) -> None:
+    """--np and --hostfile: a whole number ≥ 1, an existing file; more ranks than this
+    machine's cores (without a hostfile) is allowed but said."""
+    if isinstance(np_, bool) or not isinstance(np_, int) or np_ < 1:
+        raise InputError(f"--np {np_}: valid is a whole number ≥ 1")
+    if hostfile is not None:
+        if not Path(hostfile).is_file():
+            raise InputError(f"--hostfile {hostfile}: no such file; valid is an Open MPI "
+                             "hostfile (one host per line, e.g. 'node1 slots=16')")
+        return
+    cores = os.cpu_count() or 1
+    if np_ > cores:
+        # measured here: 3 ranks on 2 cores took 458 s for what 2 ranks ran in 4 s (Open
+        # MPI's ranks busy-wait for each other when they share a core)
+        print(f"warning: --np {np_} is more than the {cores} cores of this machine: the ranks "
+              f"will share them and run far slower than --np {cores}; give --hostfile to use "
+              "other machines", file=sys.stderr)
+
+
+UNSAFE = re.compile(r"[\s'\"]")
+
+
+def check_path(run_dir: Path) -> None:
+    """OpenFOAM takes no white space or quote in a case path (its file names drop them):
+    refuse such a run directory before anything is written."""
+    bad = UNSAFE.search(str(run_dir))
+    if bad:
+        raise InputError(f"run directory {str(run_dir)!r} holds {bad.group()!r}, which OpenFOAM "
+                         "cannot take in a case path: valid is a case name and build folder "
+                         "(FLOATFOAM_BUILD) without spaces or quotes")

@@ -24,6 +24,7 @@ _DELTA_T = re.compile(r"^deltaT = (" + _NUM + ")")
 # error); the start-up line "trapFpe: Floating point exception trapping enabled" is not one.
 _FATAL = ("FOAM FATAL ERROR", "FOAM FATAL IO ERROR", "Foam::sigFpe::sigHandler",
           "Foam::sigSegv::sigHandler", "Floating point exception (core dumped)")
+FATAL_CONTEXT = 8  # lines kept from the fatal error on
 _STATE_KEYS = {
     "Centre of mass:": "centre_of_mass",
     "Orientation:": "orientation",
@@ -71,6 +72,7 @@ class LogWatcher:
     steps: list[Step] = field(default_factory=list)
     current: Step | None = None
     fatal: str | None = None
+    fatal_lines: list[str] = field(default_factory=list)  # the fatal line and what follows
     ended: bool = False
     _pending: str = ""
     _courant: float | None = None
@@ -98,7 +100,13 @@ class LogWatcher:
         self.steps.extend(done)
         return done
 
+    def fatal_message(self) -> str:
+        """The fatal error in one line: its first line and the cause printed after it."""
+        return fatal_block(self.fatal_lines) or (self.fatal or "").strip()
+
     def _line(self, line: str, done: list[Step]) -> None:
+        if self.fatal is not None and len(self.fatal_lines) < FATAL_CONTEXT:
+            self.fatal_lines.append(line)
         if m := _TIME.match(line):
             if self.current is not None:
                 done.append(self.current)
@@ -110,7 +118,9 @@ class LogWatcher:
         elif line == "End":
             self.ended = True
         elif any(marker in line for marker in _FATAL):
-            self.fatal = self.fatal or line
+            if self.fatal is None:
+                self.fatal = line
+                self.fatal_lines.append(line)
         elif self.current is not None:
             for key, attr in _STATE_KEYS.items():
                 if line.startswith(key):
@@ -119,6 +129,27 @@ class LogWatcher:
                         if attr == "orientation" and values.size == 9:
                             values = values.reshape(3, 3)
                         setattr(self.current, attr, values)
+
+
+def fatal_block(lines: list[str]) -> str:
+    """The first fatal error in ``lines`` as one line: the error line and the cause after it,
+    up to the first blank line that follows the cause (OpenFOAM then prints where it was
+    raised), joined with " | "."""
+    start = next((i for i, line in enumerate(lines)
+                  if any(marker in line for marker in _FATAL)), None)
+    if start is None:
+        return ""
+    block: list[str] = []
+    for line in lines[start:start + FATAL_CONTEXT]:
+        text = line.strip()
+        if not text:
+            if len(block) > 1:
+                break
+            continue
+        if text.startswith(("FOAM exiting", "FOAM aborting", "From function", "in file")):
+            break
+        block.append(text)
+    return " | ".join(block)
 
 
 def _vector(text: str) -> np.ndarray | None:

@@ -96,6 +96,30 @@ def motion_distances(case: Case, grid: OGrid) -> tuple[float, float]:
     return inner, outer
 
 
+SCOTCH = Path("/usr/lib/libscotchDecomp.so")
+SCOTCH_STUB = b"This message is from the dummy scotchDecomp stub library"
+
+
+def scotch_available(library: Path = SCOTCH) -> bool:
+    """Whether OpenFOAM's scotch decomposition is the real one (Debian's v1912 ships a stub
+    that stops decomposePar with a fatal error)."""
+    try:
+        return SCOTCH_STUB not in library.read_bytes()
+    except OSError:
+        return False
+
+
+def decomposition(np_: int, grid: OGrid) -> dict:
+    """decomposeParDict entries for ``np_`` ranks: scotch where OpenFOAM has it, else a simple
+    split of the (y, z) tank into a × b blocks, a·b = np_, as near square as the tank allows."""
+    if scotch_available():
+        return {"method": "scotch"}
+    width, height = 2.0 * grid.half_length, grid.depth + grid.air_height
+    splits = [(a, np_ // a) for a in range(1, np_ + 1) if np_ % a == 0]
+    a, b = min(splits, key=lambda s: abs(math.log((width / s[0]) / (height / s[1]))))
+    return {"method": "simple", "coeffs": {"n": [1, a, b], "delta": 0.001}}
+
+
 def write_interval(end_time: float, requested: float) -> float:
     """The largest interval ≤ ``requested`` that divides ``end_time``, so that the run's last
     write falls on end_time exactly (interFoam's adjustable time step lands on write times)."""
@@ -120,7 +144,8 @@ def render(case: Case, level: str, run_dir: Path, state: dict, grid: OGrid, *,
                  "direction": [0.0, 0.0, 1.0]})
     decompose = FoamFile(run_dir / "system" / "decomposeParDict")
     decompose["numberOfSubdomains"] = np_
-    decompose["coeffs"] = {"n": [1, np_, 1], "delta": 0.001}
+    for key, value in decomposition(np_, grid).items():
+        decompose[key] = value
     return {"end_time": end_time, "cells": grid.cell_count(), **state}
 
 

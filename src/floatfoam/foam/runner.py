@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import math
 import os
-import subprocess
 import sys
 import time
 from dataclasses import dataclass
@@ -15,7 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam.foam.logwatch import LogWatcher, Step
+from floatfoam.foam import processes
+from floatfoam.foam.logwatch import LogWatcher, Step, fatal_block
 from floatfoam.layout import mark_done, step_done
 from floatfoam.motion import MOTION_COLUMNS
 
@@ -46,46 +46,54 @@ def foam_env() -> dict:
 
 
 def run_app(run_dir: Path, name: str, argv: list[str], *, np_: int = 1,
-            log_name: str | None = None, quiet: bool = False, marker: bool = True,
-            check: bool = True) -> Path:
-    """Run one OpenFOAM application to completion in ``run_dir``, logging to ``log.<name>``.
+            hostfile: Path | None = None, log_name: str | None = None, quiet: bool = False,
+            marker: bool = True, check: bool = True) -> Path:
+    """Run one OpenFOAM application to completion in ``run_dir``, logging to ``log.<name>``,
+    in a watched process group (:mod:`floatfoam.foam.processes`).
 
     With ``marker`` (a step of the run driver) it is skipped when its marker says it already
     ran, and marked done after; with ``check`` a non-zero exit raises RunError with the log's
-    path (checkMesh, which exits non-zero on a poor mesh, is read from its log instead)."""
+    path and its fatal-error lines (checkMesh, which exits non-zero on a poor mesh, is read from
+    its log instead)."""
     log = run_dir / f"log.{log_name or name}"
     if marker and step_done(run_dir, name):
         return log
-    cmd = _mpi(argv, np_)
+    cmd = _mpi(argv, np_, hostfile)
     if not quiet:
         print(f"[{run_dir.name}] {' '.join(argv)} → {log.name}", file=sys.stderr)
     with open(log, "w") as fh:
-        proc = subprocess.run(cmd, cwd=run_dir, stdout=fh, stderr=subprocess.STDOUT,
-                              env=foam_env())
-    if check and proc.returncode != 0:
-        raise RunError(f"{argv[0]} failed (exit code {proc.returncode}); see {log}")
+        code = processes.run(cmd, cwd=run_dir, stdout=fh, env=foam_env())
+    if check and code != 0:
+        cause = fatal_block(log.read_text(errors="replace").splitlines())
+        raise RunError(f"{argv[0]} failed (exit code {code})"
+                       + (f": {cause}" if cause else "") + f"; see {log}")
     if marker:
         mark_done(run_dir, name)
     return log
 
 
-def _mpi(argv: list[str], np_: int) -> list[str]:
+def _mpi(argv: list[str], np_: int, hostfile: Path | None = None) -> list[str]:
     if np_ <= 1:
         return argv
-    return ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(np_), *argv,
+    hosts = ["--hostfile", str(hostfile)] if hostfile else []
+    return ["mpirun", "--allow-run-as-root", "--oversubscribe", *hosts, "-np", str(np_), *argv,
             "-parallel"]
 
 
 def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
-               motion_csv: Path | None = None, limits: Limits = Limits(),
-               label: str = "", progress_every: float = 10.0,
-               log_name: str | None = None) -> list[Step]:
-    """Run the solver, watching its log: progress line, motion CSV, divergence.
+               hostfile: Path | None = None, motion_csv: Path | None = None,
+               limits: Limits = Limits(), label: str = "", progress_every: float = 10.0,
+               log_name: str | None = None, keep_fds=()) -> list[Step]:
+    """Run the solver, watching its log: progress line, motion CSV, divergence, and the end.
 
     The log of a resumed run is appended to ``log.<solver>`` after a separator, so earlier
-    output is never lost. Returns the parsed steps of this invocation.
+    output is never lost. The solver runs in a watched process group (``keep_fds``: the run's
+    lock, held by its watchdog); a :class:`~floatfoam.foam.processes.SignalInterruptError`
+    stops it and is re-raised with the last time reached (``time``). A run that ends before
+    ``end_time`` is an error. Returns the parsed steps of this invocation.
     """
     name = log_name or Path(argv[0]).name
+    label = label or run_dir.name
     log = run_dir / f"log.{name}"
     if log.exists():
         with open(log, "a") as fh:
@@ -95,15 +103,18 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
     writer = MotionWriter(motion_csv) if motion_csv else None
     start = time.monotonic()
     with open(log, "a") as fh:
-        proc = subprocess.Popen(_mpi(argv, np_), cwd=run_dir, stdout=fh,
-                                stderr=subprocess.STDOUT, env=foam_env())
+        child = processes.Child(_mpi(argv, np_, hostfile), cwd=run_dir, stdout=fh,
+                                env=foam_env(), keep_fds=keep_fds)
     last_report = -math.inf
     t0 = None
     try:
         with open(log) as reader:
             reader.seek(offset)
             while True:
-                finished = proc.poll() is not None
+                finished = child.poll() is not None
+                if watcher.fatal and not finished:  # let it finish writing its message
+                    _wait(child, 10.0)
+                    finished = True
                 new_steps = watcher.feed(reader.read())
                 if finished:
                     new_steps += watcher.close()
@@ -113,30 +124,38 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                         writer.append(new_steps)
                     problem = diverged(new_steps, limits)
                     if problem:
-                        raise RunError(f"{label or run_dir.name}: diverged at t = "
-                                       f"{new_steps[-1].time:g} s ({problem}); see {log}")
-                if watcher.fatal:
-                    raise RunError(f"{label or run_dir.name}: {name} stopped: "
-                                   f"{watcher.fatal.strip()}; see {log}")
+                        raise RunError(f"{label}: diverged at t = {new_steps[-1].time:g} s "
+                                       f"({problem}); see {log}")
+                if watcher.fatal and finished:
+                    raise RunError(f"{label}: {name} stopped: {watcher.fatal_message()}; "
+                                   f"see {log}")
                 now = time.monotonic()
                 if watcher.steps and (now - last_report >= progress_every or finished):
                     last_report = now
-                    print(progress_line(label or run_dir.name, watcher.steps[-1], t0, end_time,
-                                        now - start), file=sys.stderr, flush=True)
+                    print(progress_line(label, watcher.steps[-1], t0, end_time, now - start),
+                          file=sys.stderr, flush=True)
                 if finished:
                     break
                 time.sleep(0.5)
+    except processes.SignalInterruptError as err:
+        err.time = watcher.steps[-1].time if watcher.steps else None
+        raise
     finally:
-        if proc.poll() is None:
-            proc.terminate()
-            try:
-                proc.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-    if proc.returncode != 0:
-        raise RunError(f"{label or run_dir.name}: {name} failed (exit code "
-                       f"{proc.returncode}); see {log}")
+        child.close()
+    if child.proc.returncode != 0:
+        raise RunError(f"{label}: {name} failed (exit code {child.proc.returncode}); "
+                       f"see {log}")
+    reached = watcher.steps[-1].time if watcher.steps else None
+    if reached is None or reached < end_time * (1 - 1e-9) - 1e-12:
+        raise RunError(f"{label}: {name} ended at t = {reached} s, short of end_time = "
+                       f"{end_time:g} s; see {log}")
     return watcher.steps
+
+
+def _wait(child: processes.Child, seconds: float) -> None:
+    end = time.monotonic() + seconds
+    while child.poll() is None and time.monotonic() < end:
+        time.sleep(0.1)
 
 
 def diverged(steps: list[Step], limits: Limits) -> str | None:

@@ -1,0 +1,103 @@
+"""Written time folders of a run: which are complete, and setting aside the ones that are not.
+
+A solver stopped while writing leaves its last time folder half written (files missing or cut
+short); OpenFOAM would restart from it and fail, every time. A time folder is complete when
+
+* it holds the initial fields (the files of ``0.orig``), ``uniform/time`` and, for a moving body,
+  ``uniform/sixDoFRigidBodyMotionState`` and ``polyMesh/points``;
+* it holds every file the time folder written before it holds;
+* every file ends with OpenFOAM's closing divider line (written last, in ASCII and binary).
+
+An incomplete folder is moved into ``<run>/.floatfoam/incomplete/`` (never deleted), in every
+``processor*`` folder of a parallel run, so that the run resumes from the time before.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from floatfoam.layout import MARKERS
+
+FOOTER = b"// ************************************************************************* //"
+MOTION_FILES = ("uniform/sixDoFRigidBodyMotionState", "polyMesh/points")
+
+
+def time_folders(root: Path) -> list[tuple[float, Path]]:
+    """The numeric time folders under ``root`` other than 0, in time order."""
+    found = []
+    for path in Path(root).iterdir() if Path(root).is_dir() else ():
+        try:
+            value = float(path.name)
+        except ValueError:
+            continue
+        if path.is_dir() and value > 0.0:
+            found.append((value, path))
+    return sorted(found)
+
+
+def _files(folder: Path) -> set[str]:
+    return {str(p.relative_to(folder)) for p in folder.rglob("*") if p.is_file()}
+
+
+def _ends_with_footer(path: Path) -> bool:
+    with open(path, "rb") as fh:
+        fh.seek(0, 2)
+        size = fh.tell()
+        fh.seek(max(0, size - len(FOOTER) - 8))
+        return FOOTER in fh.read()
+
+
+def is_complete(folder: Path, required: set[str], previous: Path | None) -> bool:
+    """Whether ``folder`` is a complete write (see the module docstring)."""
+    files = _files(folder)
+    need = set(required) | (_files(previous) if previous is not None else set())
+    return need <= files and all(_ends_with_footer(folder / f) for f in files)
+
+
+def required_files(run_dir: Path, moving: bool) -> set[str]:
+    """What every written time folder of this run must hold: the fields floatfoam rendered
+    (``0.orig``; ``0/`` also gains files the solver reads but never writes, motionScale)."""
+    initial = {p.name for p in (Path(run_dir) / "0.orig").iterdir() if p.is_file()} \
+        if (Path(run_dir) / "0.orig").is_dir() else set()
+    return initial | {"uniform/time"} | (set(MOTION_FILES) if moving else set())
+
+
+def set_aside_incomplete(run_dir: Path, moving: bool) -> list[Path]:
+    """Move the incomplete trailing time folders aside (serial and ``processor*``); returns
+    where they went. Only trailing folders are checked: OpenFOAM restarts from the latest."""
+    run_dir = Path(run_dir)
+    roots = sorted(run_dir.glob("processor[0-9]*")) or [run_dir]
+    required = required_files(run_dir, moving)
+    moved: list[Path] = []
+    while True:
+        per_root = [time_folders(root) for root in roots]
+        latest = {times[-1][0] for times in per_root if times}
+        if not latest:
+            return moved
+        t = max(latest)
+        bad = False
+        for times in per_root:
+            entries = [p for value, p in times if value == t]
+            before = [p for value, p in times if value < t]
+            if not entries:
+                continue
+            previous = before[-1] if before else None
+            if not is_complete(entries[0], required, previous):
+                bad = True
+        if not bad:
+            return moved
+        stamp = time.strftime("%Y%m%d-%H%M%S")
+        target = run_dir / MARKERS / "incomplete"
+        target.mkdir(parents=True, exist_ok=True)
+        for root, times in zip(roots, per_root, strict=True):
+            for value, path in times:
+                if value == t:
+                    prefix = "" if root == run_dir else f"{root.name}-"
+                    dest = target / f"{prefix}{path.name}.{stamp}"
+                    n = 1
+                    while dest.exists():
+                        n += 1
+                        dest = target / f"{prefix}{path.name}.{stamp}-{n}"
+                    path.rename(dest)
+                    moved.append(dest)

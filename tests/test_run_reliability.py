@@ -1,0 +1,200 @@
+"""Runs that cannot corrupt each other (real OpenFOAM, shortened coarse runs of cylinder_heave).
+
+Each test drives the ``floatfoam`` console script in its own process, as a user would, with
+``FLOATFOAM_BUILD`` pointing into the test's folder: two drivers racing on one directory, a
+driver stopped with SIGTERM, SIGINT, SIGHUP or SIGKILL while interFoam runs, a time folder cut
+short, a run ending exactly at end_time, a hostfile, an odd rank count, a fatal
+OpenFOAM error, and the Slurm batch script's tasks run with bash.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from foamlib import FoamFile
+from procutil import locked, processes_in
+
+from floatfoam.case import load_case
+from floatfoam.cli import main
+from floatfoam.foam import render, runner, timedirs
+from floatfoam.hydrostatics.theory import equilibrium
+from floatfoam.layout import is_finished
+from floatfoam.motion import read_motion
+
+pytestmark = pytest.mark.openfoam
+
+FLOATFOAM = str(Path(sys.executable).with_name("floatfoam"))
+CASE = "cylinder_heave"
+
+
+def command(*extra: str, end_time: float = 0.6) -> list[str]:
+    interval = min(end_time, 0.1)
+    return [FLOATFOAM, "run", CASE, "--set", f"run.end_time={end_time}", "--set",
+            f"run.write_interval={interval}", *extra]
+
+
+def environment(build: Path) -> dict:
+    return {**os.environ, "FLOATFOAM_BUILD": str(build)}
+
+
+def start(build: Path, *extra: str, end_time: float = 0.6) -> subprocess.Popen:
+    """A driver in the background, in a session of its own (signals reach it alone)."""
+    return subprocess.Popen(command(*extra, end_time=end_time), env=environment(build),
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+
+
+def wait_until(predicate, driver: subprocess.Popen | None = None, seconds: float = 240):
+    deadline = time.monotonic() + seconds
+    while not predicate():
+        assert driver is None or driver.poll() is None, driver.communicate()
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.2)
+
+
+def wait_gone(run_dir: Path, seconds: float = 15.0) -> None:
+    """No process works in the run directory and its lock is free (the watchdog is done)."""
+    lock = run_dir.parent / f".{run_dir.name}.lock"
+    wait_until(lambda: not processes_in(run_dir) and not locked(lock), seconds=seconds)
+
+
+def last_line(text: str) -> str:
+    return text.strip().splitlines()[-1]
+
+
+def test_race_sigterm_truncated_time_and_resume(tmp_path):
+    """A second driver (and --force) is refused while the first runs; SIGTERM stops driver and
+    solver with one line; a time folder cut short is set aside; the rerun resumes and ends at
+    end_time with a continuous motion record."""
+    run_dir = tmp_path / CASE / "coarse"
+    first = start(tmp_path)
+    wait_until(lambda: (run_dir / "0.2" / "uniform" / "time").exists(), first)
+    for extra in ((), ("--force",)):
+        second = subprocess.run(command(*extra), env=environment(tmp_path),
+                                capture_output=True, text=True, timeout=120)
+        assert second.returncode == 75, second.stderr
+        assert f"PID {first.pid}, started " in last_line(second.stderr)
+    assert run_dir.is_dir() and not list(run_dir.parent.glob("coarse.old-*"))  # not moved
+
+    first.send_signal(signal.SIGTERM)
+    _, err = first.communicate(timeout=30)
+    assert first.returncode == 143
+    line = last_line(err)
+    assert "interrupted (SIGTERM) at t = " in line and "run the same command to resume" in line
+    assert "Traceback" not in err
+    wait_gone(run_dir)
+
+    latest = timedirs.time_folders(run_dir)[-1][1]
+    field = latest / "U"
+    field.write_bytes(field.read_bytes()[: field.stat().st_size // 2])  # a write cut short
+
+    rerun = subprocess.run(command(), env=environment(tmp_path), capture_output=True,
+                           text=True, timeout=600)
+    assert rerun.returncode == 0, rerun.stderr
+    assert "incomplete time folder" in rerun.stderr
+    assert any(p.name.startswith(latest.name) for p in
+               (run_dir / ".floatfoam" / "incomplete").iterdir())
+    t = read_motion(run_dir / "motion.csv")["time"]
+    assert np.all(np.diff(t) > 0) and t[-1] == pytest.approx(0.6, abs=1e-9)
+    assert (run_dir / "0.6" / "uniform" / "time").is_file() and is_finished(run_dir)
+
+
+@pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGHUP, 129)])
+def test_interrupt_signals_stop_the_solver(tmp_path, sig, code):
+    run_dir = tmp_path / CASE / "coarse"
+    driver = start(tmp_path)
+    wait_until(lambda: (run_dir / "motion.csv").is_file() and processes_in(run_dir), driver)
+    driver.send_signal(sig)
+    _, err = driver.communicate(timeout=30)
+    assert driver.returncode == code
+    assert f"interrupted ({signal.Signals(sig).name})" in last_line(err)
+    wait_gone(run_dir)
+
+
+def test_sigkilled_driver_takes_its_solver(tmp_path):
+    run_dir = tmp_path / CASE / "coarse"
+    driver = start(tmp_path)
+    wait_until(lambda: (run_dir / "motion.csv").is_file() and processes_in(run_dir), driver)
+    solver = processes_in(run_dir)
+    driver.kill()
+    driver.wait()
+    wait_gone(run_dir)  # within 15 s: the watchdog's SIGTERM, SIGKILL 5 s later
+    assert not any(Path(f"/proc/{pid}").exists() and
+                   "Z" not in Path(f"/proc/{pid}/stat").read_text().split(")")[-1][:3]
+                   for pid in solver)
+
+
+def test_run_ends_exactly_at_end_time(tmp_path):
+    """end_time 0.25 s with write_interval 0.1 s: the interval becomes 0.25/3 s and the last
+    write is at 0.25 s."""
+    proc = subprocess.run(command(end_time=0.25), env=environment(tmp_path),
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    run_dir = tmp_path / CASE / "coarse"
+    assert (run_dir / "0.25" / "uniform" / "time").is_file()
+    assert read_motion(run_dir / "motion.csv")["time"][-1] == pytest.approx(0.25, abs=1e-9)
+
+
+def test_hostfile(tmp_path):
+    """mpirun takes the hostfile (two slots on this machine: more ranks than cores would
+    oversubscribe them, which Open MPI's busy-waiting makes ~100× slower)."""
+    hostfile = tmp_path / "hosts"
+    hostfile.write_text("localhost slots=2\n")
+    proc = subprocess.run(command("--np", "2", "--hostfile", str(hostfile), end_time=0.05),
+                          env=environment(tmp_path), capture_output=True, text=True,
+                          timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    run_dir = tmp_path / CASE / "coarse"
+    assert sorted(p.name for p in run_dir.glob("processor*")) == ["processor0", "processor1"]
+    assert is_finished(run_dir)
+
+
+def test_odd_rank_count_decomposes(tmp_path):
+    """Three ranks: the rendered decomposition splits the tank 1 × 3 × 1 and decomposePar
+    (real) makes three processor meshes; no solver runs."""
+    case = load_case(CASE)
+    state = render.release_state(case, equilibrium(case))
+    grid = render.ogrid_for(case, "coarse", state)
+    render.render(case, "coarse", tmp_path, state, grid, np_=3)
+    runner.run_app(tmp_path, "blockMesh", ["blockMesh"], quiet=True, marker=False)
+    shutil.copytree(tmp_path / "0.orig", tmp_path / "0")
+    runner.run_app(tmp_path, "decomposePar", ["decomposePar"], quiet=True, marker=False)
+    decompose = FoamFile(tmp_path / "system" / "decomposeParDict")
+    assert decompose["method"] == "simple" and list(decompose["coeffs"]["n"]) == [1, 3, 1]
+    assert sorted(p.name for p in tmp_path.glob("processor*")) == [f"processor{i}"
+                                                                   for i in range(3)]
+
+
+def test_fatal_openfoam_error_reaches_the_message(tmp_path, monkeypatch, capsys):
+    """decomposePar with Debian's stub scotch: exit 1, one line with the log's path and the
+    cause printed after FOAM FATAL ERROR."""
+    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path))
+    monkeypatch.setattr(render, "scotch_available", lambda: True)
+    assert main(["run", CASE, "--np", "2", "--set", "run.end_time=0.05", "--set",
+                 "run.write_interval=0.05"]) == 1
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert err.startswith("floatfoam run: decomposePar failed (exit code 1): --> FOAM FATAL")
+    assert "without the scotchDecomp library loaded" in err and "log.decomposePar" in err
+
+
+def test_batch_script_tasks_run_with_bash(tmp_path):
+    script = tmp_path / "sweep.sh"
+    made = subprocess.run([FLOATFOAM, "batch", CASE, "--levels", "coarse", "medium", "--set",
+                           "run.end_time=0.03", "--set", "run.write_interval=0.03", "--out",
+                           str(script)], env=environment(tmp_path), capture_output=True,
+                          text=True)
+    assert made.returncode == 0, made.stderr
+    for task, level in enumerate(("coarse", "medium")):
+        env = {**environment(tmp_path), "SLURM_ARRAY_TASK_ID": str(task)}
+        proc = subprocess.run(["bash", str(script)], env=env, capture_output=True, text=True,
+                              timeout=600)
+        assert proc.returncode == 0, proc.stderr
+        assert is_finished(tmp_path / CASE / level)
