@@ -19,7 +19,7 @@ from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.errors import InputError
 from floatfoam.foam import render, runlock, timedirs
-from floatfoam.foam.driver import check_path
+from floatfoam.foam.driver import check_path, check_ranks
 from floatfoam.foam.logwatch import LogWatcher, fatal_block
 
 DATA = Path(__file__).parent / "data"
@@ -182,3 +182,14 @@ def test_batch_refuses_bad_input_and_never_overwrites(tmp_path, capsys):
     assert text.count("$'\\t'") == 3 + 1 and "--np 2" in text  # 3 tasks, IFS
     assert main(["batch", "cylinder_heave", "--out", str(out)]) == 2  # exists: refused
     assert "nothing is overwritten" in capsys.readouterr().err
+
+
+def test_more_ranks_than_cores_is_warned(capsys, tmp_path):
+    check_ranks(1, None)
+    assert capsys.readouterr().err == ""
+    check_ranks((os.cpu_count() or 1) + 1, None)
+    assert "more than the" in capsys.readouterr().err
+    hosts = tmp_path / "hosts"
+    hosts.write_text("node1 slots=64\n")
+    check_ranks(64, hosts)  # the cores are elsewhere: no warning
+    assert capsys.readouterr().err == ""
