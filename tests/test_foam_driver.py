@@ -12,6 +12,7 @@ from floatfoam.cli import main
 from floatfoam.errors import InputError
 from floatfoam.foam import driver, runner
 from floatfoam.foam.logwatch import LogWatcher, Step
+from floatfoam.foam.motionlog import MotionWriter
 
 EXCERPT = Path(__file__).parent / "data" / "log.interFoam.excerpt"
 
@@ -56,8 +57,8 @@ def test_motion_writer_replaces_rows_after_restart(tmp_path):
     def step(t):
         return Step(t, 0.1, 1e-3, np.array([0.0, 0.0, t]), np.eye(3), np.zeros(3), np.zeros(3))
 
-    runner.MotionWriter(path).append([step(t) for t in (0.1, 0.2, 0.3)])
-    runner.MotionWriter(path).append([step(t) for t in (0.2, 0.25)])  # resumed from 0.2
+    MotionWriter(path).append([step(t) for t in (0.1, 0.2, 0.3)])
+    MotionWriter(path).append([step(t) for t in (0.2, 0.25)])  # resumed from 0.2
     times = np.loadtxt(path, delimiter=",", skiprows=1)[:, 0]
     assert times.tolist() == [0.1, 0.2, 0.25]
 

@@ -21,8 +21,17 @@ from floatfoam.errors import InputError
 from floatfoam.foam import render, runlock, timedirs
 from floatfoam.foam.driver import check_path, check_ranks
 from floatfoam.foam.logwatch import LogWatcher, fatal_block
+from floatfoam.foam.motionlog import RESUMED, rebuild_motion
+from floatfoam.motion import read_motion
 
 DATA = Path(__file__).parent / "data"
+HOLD_LOCK = """
+import sys, time
+from floatfoam.foam.runlock import RunLock
+with RunLock(sys.argv[1], "c/coarse"):
+    print("locked", flush=True)
+    time.sleep(60)
+"""
 FLOATFOAM = Path(sys.executable).with_name("floatfoam")
 
 
@@ -94,9 +103,12 @@ def test_unwritable_build_folder_is_one_line(tmp_path):
 
 
 def test_output_into_a_closed_pipe_is_quiet():
-    proc = subprocess.run(f"{FLOATFOAM} theory cylinder_heave | head -1", shell=True,
-                          capture_output=True, text=True, executable="/bin/bash")
+    proc = subprocess.run(f"{FLOATFOAM} theory cylinder_heave | head -1; "
+                          "echo \"exit ${PIPESTATUS[0]}\"", shell=True, capture_output=True,
+                          text=True, executable="/bin/bash")
     assert proc.stdout.startswith("cylinder_heave:") and proc.stderr == ""
+    # 141 (128 + SIGPIPE) when the reader left early; 0 when the output fitted in the pipe
+    assert proc.stdout.split()[-1] in ("141", "0")
 
 
 def test_paths_openfoam_cannot_take_are_refused():
@@ -111,12 +123,17 @@ def test_lock_refuses_a_second_holder_and_takes_over_a_dead_one(tmp_path):
         assert first.stale_holder() is None
         with pytest.raises(runlock.RunLockedError, match=rf"PID {os.getpid()}, started "):
             runlock.RunLock(path, "c/coarse").__enter__()
-    # A holder that died without releasing: its PID stays in the file, the lock is free.
-    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
-                          capture_output=True, text=True).stdout.strip()
-    path.write_text(f"{dead} 2026-01-01 00:00:00\n")
+    # A holder killed while it holds the lock: the kernel frees the lock, its PID stays in
+    # the file, and the next run takes over (and says whose place it takes).
+    holder = subprocess.Popen([sys.executable, "-c", HOLD_LOCK, str(path)],
+                              stdout=subprocess.PIPE, text=True)
+    assert holder.stdout.readline().strip() == "locked"
+    with pytest.raises(runlock.RunLockedError, match=rf"PID {holder.pid}, started "):
+        runlock.RunLock(path, "c/coarse").__enter__()
+    holder.kill()
+    holder.wait()
     with runlock.RunLock(path, "c/coarse") as lock:
-        assert lock.stale_holder() == dead
+        assert lock.stale_holder() == str(holder.pid)
 
 
 def _time_folder(root: Path, name: str, files=("U", "p_rgh", "uniform/time"), cut=()):
@@ -193,3 +210,21 @@ def test_more_ranks_than_cores_is_warned(capsys, tmp_path):
     hosts.write_text("node1 slots=64\n")
     check_ranks(64, hosts)  # the cores are elsewhere: no warning
     assert capsys.readouterr().err == ""
+
+
+def test_motion_series_rebuilt_from_a_resumed_log(tmp_path):
+    """The real log excerpt, cut in two with a resume from its middle step: the rebuilt series
+    has every step once, in order (a resumed part replaces the rows from its restart on)."""
+    text = (DATA / "log.interFoam.excerpt").read_text()
+    steps = [i for i, line in enumerate(text.splitlines()) if line.startswith("Time = ")]
+    lines = text.splitlines()
+    middle = steps[len(steps) // 2]
+    resumed = "\n".join(lines[:steps[-2]] + [f"{RESUMED} at now"] + lines[middle:]) + "\n"
+    log = tmp_path / "log.interFoam"
+    log.write_text(resumed)
+    csv = tmp_path / "motion.csv"
+    rebuild_motion(log, csv)
+    t = read_motion(csv)["time"]
+    full = LogWatcher()
+    expected = [s.time for s in full.feed(text) + full.close() if s.motion_row()]
+    assert list(t) == pytest.approx(expected) and len(t) >= 3

@@ -119,9 +119,12 @@ def test_interrupt_signals_stop_the_solver(tmp_path, sig, code):
     wait_gone(run_dir)
 
 
-def test_sigkilled_driver_takes_its_solver(tmp_path):
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_sigkilled_driver_takes_its_solver(tmp_path, ranks):
+    """SIGKILL of the driver alone: the solver (serial: the parent-death signal; MPI: the
+    watchdog, since each rank has a process group of its own) is gone within seconds."""
     run_dir = tmp_path / CASE / "coarse"
-    driver = start(tmp_path)
+    driver = start(tmp_path, "--np", str(ranks))
     wait_until(lambda: (run_dir / "motion.csv").is_file() and processes_in(run_dir), driver)
     solver = processes_in(run_dir)
     driver.kill()

@@ -20,7 +20,7 @@ import numpy as np
 from floatfoam import settings
 from floatfoam.bodies import shapes
 from floatfoam.dofs import RELEASE_KEYS
-from floatfoam.errors import InputError, number
+from floatfoam.errors import InputError, is_number, number
 from floatfoam.layout import CASES_DIR, list_cases
 
 SHAPES = {
@@ -178,9 +178,7 @@ def _number(cfg: dict, table: str, key: str, *, positive: bool = True) -> float:
 
 def _vector(cfg: dict, table: str, key: str, *, positive: bool = False) -> np.ndarray:
     value = cfg[table].get(key)
-    ok = isinstance(value, list) and len(value) == 3 and all(
-        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-        for v in value)
+    ok = isinstance(value, list) and len(value) == 3 and all(is_number(v) for v in value)
     if not ok or (positive and min(value) <= 0):
         kind = "three numbers > 0" if positive else "three numbers"
         raise InputError(f"{table}.{key} = {value!r}: valid is [x, y, z], {kind}")
@@ -241,8 +239,7 @@ def make_body(cfg: dict, folder: Path) -> shapes.Body:
 
 def _resolution(value) -> int:
     """body.resolution: points per axis of the implicit surface's grid, within memory."""
-    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value) \
-            and value > MAX_RESOLUTION:
+    if is_number(value) and value > MAX_RESOLUTION:
         need = IMPLICIT_BYTES_PER_POINT * float(value) ** 3 / 2**30
         raise InputError(f"body.resolution = {value!r}: valid is a whole number from 8 to "
                          f"{MAX_RESOLUTION} ({MAX_RESOLUTION}³ points take ~2 GiB; {value!r} "
@@ -254,9 +251,8 @@ def _resolution(value) -> int:
 def _bounds(value) -> list:
     """body.bounds: [[x0, y0, z0], [x1, y1, z1]], numbers."""
     ok = isinstance(value, list) and len(value) == 2 and all(
-        isinstance(row, list) and len(row) == 3 and all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-            for v in row) for row in value)
+        isinstance(row, list) and len(row) == 3 and all(is_number(v) for v in row)
+        for row in value)
     if not ok:
         raise InputError(f"body.bounds = {value!r}: valid is [[x0, y0, z0], [x1, y1, z1]], "
                          "numbers in m")

@@ -9,13 +9,19 @@ class InputError(ValueError):
     """
 
 
+def is_number(value) -> bool:
+    """Whether ``value`` is a finite number (a boolean is not one)."""
+    import math
+
+    return isinstance(value, (int, float)) and not isinstance(value, bool) \
+        and math.isfinite(value)
+
+
 def number(value, name: str, *, minimum: float | None = None, integer: bool = False) -> float:
     """``value`` as a float if it is a finite number (not a boolean), greater than ``minimum``
     when one is given and whole when ``integer``; else an InputError naming ``name``, the value
     and what is valid. The one number check of every input (case files, --set, options)."""
-    import math
-
-    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    ok = is_number(value)
     ok = ok and (minimum is None or value > minimum) and (not integer or value == int(value))
     if not ok:
         kind = ("a whole number" if integer else

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import os
 from dataclasses import dataclass, field, fields
 
 from floatfoam.errors import InputError, number
@@ -23,7 +24,16 @@ from floatfoam.errors import InputError, number
 # 200.3 MB at 45,120 (fine), i.e. 1.94 kB per added cell. The cap keeps a typo from asking for
 # more memory than a workstation has.
 BYTES_PER_CELL = 2000
-MAX_CELLS = 12_000_000  # ~22 GiB at BYTES_PER_CELL: this 24 GiB machine's memory
+
+
+def max_cells() -> int:
+    """The cells this machine's memory holds at :data:`BYTES_PER_CELL` (a run on other
+    machines, with --hostfile, is not held to it)."""
+    try:
+        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError):
+        memory = 24 * 2**30
+    return int(memory // BYTES_PER_CELL)
 
 
 def _spec(default, *, kind=float, minimum=None, closed=False, maximum=None, doc=""):
@@ -90,7 +100,12 @@ class MeshSettings:
     gmsh: GmshSettings = field(default_factory=GmshSettings)
 
     def check(self) -> None:
-        pass
+        ring = 4 * self.cells_radial * self.cells_side  # the O-grid around the body alone
+        if ring > max_cells():
+            raise InputError(f"mesh.cells_radial × mesh.cells_side = {self.cells_radial} × "
+                             f"{self.cells_side}: the O-grid around the body alone has "
+                             f"{memory_text(ring)}; valid is at most {max_cells():,} cells on "
+                             "this machine")
 
 
 @dataclass(frozen=True)
@@ -172,7 +187,9 @@ def _value(value, name: str, meta: dict):
     if high is not None and result > high:
         lo_text = "" if low is None else f"{low:g} < "
         what = "a whole number" if kind is int else "a number"
-        raise InputError(f"{name} = {value!r}: valid is {what} {lo_text}x ≤ {high:g}")
+        cells = f" ({memory_text(result)} in one row of cells alone)" \
+            if name.startswith("mesh.cells_") else ""
+        raise InputError(f"{name} = {value!r}: valid is {what} {lo_text}x ≤ {high:g}{cells}")
     return result
 
 

@@ -31,8 +31,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     """Run one command. Every error is one line on stderr, never a traceback (unless --debug):
-    exit 2 for bad input (and a folder that cannot be written), 1 for a failure, 130 when
-    interrupted, 141 when the reader of the output went away (``| head``)."""
+    exit 2 for bad input (and a case or build folder that cannot be used), 1 for a failure,
+    130 when interrupted, 141 when the reader of the output went away (``| head``); ``run``
+    adds 75 and 128 + signal (floatfoam.cli.run)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     prog = f"floatfoam {args.command}"
@@ -53,15 +54,25 @@ def main(argv: list[str] | None = None) -> int:
             raise
         print(f"{prog}: interrupted", file=sys.stderr)
         return 130
-    except OSError as err:
+    except (PermissionError, NotADirectoryError, IsADirectoryError) as err:
         if args.debug:
             raise
-        where = f" {err.filename}" if err.filename else ""
-        print(f"{prog}: error: cannot use{where}: {err.strerror or err}; valid is a readable "
+        print(f"{prog}: error: cannot use {err.filename}: {err.strerror}; valid is a readable "
               "case and a writable build folder (FLOATFOAM_BUILD names another)",
               file=sys.stderr)
         return 2
+    except OSError as err:  # a missing program, a full disk, an I/O error: not the input
+        if args.debug:
+            raise
+        where = f" ({err.filename})" if err.filename else ""
+        print(f"{prog}: failed: {err.strerror or err}{where}", file=sys.stderr)
+        return 1
     except Exception as err:  # noqa: BLE001 - the last guard against a traceback
+        from floatfoam.foam.runner import RunError
+
+        if isinstance(err, RunError):  # an OpenFOAM application failed (floatfoam mesh ...)
+            print(f"{prog}: {err}", file=sys.stderr)
+            return 1
         if args.debug:
             raise
         print(f"{prog}: internal error: {type(err).__name__}: {err} (rerun with --debug for "

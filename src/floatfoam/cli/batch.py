@@ -76,7 +76,7 @@ def script(tasks: list[tuple[str, str]], args) -> str:
         command += ["--hostfile", shlex.quote(str(Path(args.hostfile).resolve()))]
     for item in args.overrides:
         command += ["--set", shlex.quote(item)]
-    build = os.environ.get(layout.BUILD_ENV)
+    build = str(layout.build_dir()) if os.environ.get(layout.BUILD_ENV) else None
     lines = [
         "#!/bin/bash",
         "#SBATCH --job-name=floatfoam",

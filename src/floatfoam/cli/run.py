@@ -35,29 +35,37 @@ def run(args) -> int:
     from floatfoam.foam.runner import RunError
     from floatfoam.hydrostatics.theory import equilibrium
 
-    case = load_case(args.case, args.overrides)
-    if args.level not in LEVELS:
-        raise InputError(f"--level {args.level!r}: valid levels are {', '.join(LEVELS)}")
-    eq = equilibrium(case)  # solved once, handed to the rendering and the summary
     try:
-        with signals_interrupt():
+        with signals_interrupt():  # from here on, a signal is one line and stops the solver
+            case = load_case(args.case, args.overrides)
+            if args.level not in LEVELS:
+                raise InputError(f"--level {args.level!r}: valid levels are "
+                                 f"{', '.join(LEVELS)}")
+            eq = equilibrium(case)  # solved once, handed to the rendering and the summary
             result = run_case(case, args.level, args.np, args.force, equilibrium=eq,
                               hostfile=args.hostfile)
     except RunError as err:
-        print(f"floatfoam run: {err}", file=sys.stderr)
+        _say(f"floatfoam run: {err}")
         return 1
     except RunLockedError as err:
-        print(f"floatfoam run: {err}", file=sys.stderr)
+        _say(f"floatfoam run: {err}")
         return EXIT_LOCKED
     except SignalInterruptError as err:
         where = f"at t = {err.time:g} s" if err.time is not None else "before the solver ran"
-        print(f"floatfoam run: interrupted ({err}) {where}; run the same command to resume",
-              file=sys.stderr)
+        _say(f"floatfoam run: interrupted ({err}) {where}; run the same command to resume")
         return err.exit_code
     if result.already_finished:
         print(f"{result.run_dir} holds a finished run (use --force to run it again).")
     print_summary(case, result, eq)
     return 0
+
+
+def _say(line: str) -> None:
+    """One line on stderr; a closed terminal (SIGHUP) must not turn it into a traceback."""
+    try:
+        print(line, file=sys.stderr, flush=True)
+    except OSError:
+        pass
 
 
 def print_summary(case, result, eq) -> None:

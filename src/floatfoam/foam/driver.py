@@ -21,9 +21,10 @@ from floatfoam import layout
 from floatfoam.case import Case
 from floatfoam.errors import InputError
 from floatfoam.foam import runner
+from floatfoam.foam.motionlog import rebuild_motion
 from floatfoam.foam.render import ogrid_for, release_state, render
 from floatfoam.foam.runlock import RunLock, lock_path
-from floatfoam.foam.timedirs import set_aside_incomplete
+from floatfoam.foam.timedirs import latest_time, set_aside_incomplete
 from floatfoam.hydrostatics.theory import Equilibrium
 
 
@@ -99,7 +100,7 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
 
         equilibrium = solve(case)
     state = release_state(case, equilibrium)
-    grid = ogrid_for(case, level, state)  # bad input fails here, before anything is written
+    grid = ogrid_for(case, level, state, local=hostfile is None)  # bad input fails here
     label = f"{case.name}/{level}"
     check_path(layout.run_dir(case.name, level, build_dir))
     with RunLock(lock_path(case.name, level, build_dir), label) as lock:
@@ -134,9 +135,16 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
               f"simulate; log: {run_dir / 'log.interFoam'}")
         limits = runner.Limits(max_courant=case.settings.run.divergence_courant,
                                max_body_speed=case.settings.run.divergence_body_speed)
-        runner.run_solver(run_dir, [str(solver)], end_time=info["end_time"], np_=np_,
-                          hostfile=hostfile, motion_csv=motion, limits=limits, label=label,
-                          log_name="interFoam", keep_fds=(lock.fd,))
+        reached = latest_time(run_dir) if resumed else None
+        if reached is not None and reached >= info["end_time"] * (1 - 1e-9):
+            # the solver wrote end_time, and its driver stopped before saying so
+            print(f"[{label}] the solver had reached end_time ({reached:g} s); the motion "
+                  "series is rebuilt from its log", file=sys.stderr)
+            rebuild_motion(run_dir / "log.interFoam", motion)
+        else:
+            runner.run_solver(run_dir, [str(solver)], end_time=info["end_time"], np_=np_,
+                              hostfile=hostfile, motion_csv=motion, limits=limits,
+                              label=label, log_name="interFoam", keep_fds=(lock.fd,))
         layout.mark_done(run_dir, layout.FINISHED)
         return RunResult(run_dir, motion, info, resumed)
 

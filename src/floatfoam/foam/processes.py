@@ -1,16 +1,22 @@
 """Child processes that never outlive the command that started them.
 
-Every OpenFOAM application (and ``mpirun`` with its ranks) runs in a process group of its own,
-so that it can be stopped as a whole. Three guards keep it from running on without floatfoam:
+Every OpenFOAM application (and ``mpirun`` with its ranks) runs in a session of its own: Open
+MPI puts each rank in a process group of its own but keeps them in mpirun's session, so the
+session is what holds "the solver". Three guards keep it from running on without floatfoam:
 
 * SIGINT, SIGTERM and SIGHUP of the driver raise :class:`SignalInterruptError` (inside
-  :func:`signals_interrupt`), and the ``finally`` of the caller stops the group;
-* the direct child gets SIGKILL from the kernel if the driver dies (``PR_SET_PDEATHSIG``);
+  :func:`signals_interrupt`), and the ``finally`` of the caller stops the session;
+* the direct child gets SIGTERM from the kernel if the driver dies (``PR_SET_PDEATHSIG``), so
+  that mpirun can take its ranks down;
 * a watchdog process (:data:`WATCHDOG`) holds a pipe from the driver: when the pipe closes
-  without the word ``done`` — the driver was killed, even with SIGKILL — it stops the whole
-  group (mpirun's ranks included, which the death signal does not reach), then exits. It also
-  holds the run's lock (:mod:`floatfoam.foam.runlock`) until the group is gone, so that no new
-  run starts beside a dying one.
+  without the word ``done`` — the driver was killed, even with SIGKILL — it stops every process
+  of the session (ranks orphaned by a dead mpirun included), then exits. It also holds the
+  run's lock (:mod:`floatfoam.foam.runlock`) until the session is empty, so that no new run
+  starts beside a dying one.
+
+Stopping is SIGTERM to every live process of the session, then SIGKILL after
+:data:`STOP_GRACE` seconds. Signals are blocked while a child and its watchdog are started,
+so that an interrupt cannot fall between the two.
 """
 
 from __future__ import annotations
@@ -25,29 +31,21 @@ import time
 from pathlib import Path
 
 PR_SET_PDEATHSIG = 1
-STOP_GRACE = 5.0  # s between SIGTERM and SIGKILL of a process group
+STOP_GRACE = 5.0  # s between SIGTERM and SIGKILL of a session
+INTERRUPTS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 WATCHDOG = r"""
-import os, signal, sys, time
-from floatfoam.foam.processes import group_alive
-pgid = int(sys.argv[1])
+import sys
+from floatfoam.foam.processes import stop_session
 word = sys.stdin.buffer.read()  # returns when the driver closes the pipe or dies
 if word.strip() != b"done":
-    for sig in (signal.SIGTERM, signal.SIGKILL):
-        try:
-            os.killpg(pgid, sig)
-        except ProcessLookupError:
-            break
-        end = time.monotonic() + 5.0
-        while group_alive(pgid) and time.monotonic() < end:
-            time.sleep(0.1)
-        if not group_alive(pgid):
-            break
+    stop_session(int(sys.argv[1]))
 """
 
 
-class SignalInterruptError(Exception):
-    """The driver received SIGINT, SIGTERM or SIGHUP (``signum``)."""
+class SignalInterruptError(BaseException):
+    """The driver received SIGINT, SIGTERM or SIGHUP (``signum``). A BaseException, as
+    KeyboardInterrupt is, so that no ``except Exception`` on the way swallows it."""
 
     def __init__(self, signum: int):
         super().__init__(signal.Signals(signum).name)
@@ -66,8 +64,7 @@ def signals_interrupt():
     def handler(signum, frame):
         raise SignalInterruptError(signum)
 
-    names = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
-    previous = {s: signal.signal(s, handler) for s in names}
+    previous = {s: signal.signal(s, handler) for s in INTERRUPTS}
     try:
         yield
     finally:
@@ -75,27 +72,67 @@ def signals_interrupt():
             signal.signal(s, h)
 
 
-def _die_with_parent() -> None:
-    """In the child, before exec: SIGKILL when the parent dies (Linux)."""
-    try:
-        libc = ctypes.CDLL("libc.so.6", use_errno=True)
-        libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-    except OSError:  # not Linux: the watchdog still guards
-        pass
+def session_members(sid: int) -> list[int]:
+    """Live (not zombie) processes of session ``sid``, read from /proc."""
+    members = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except (OSError, IndexError):
+            continue
+        # after the command: state, ppid, pgrp, session, ...
+        if len(fields) > 3 and fields[3] == str(sid) and fields[0] not in ("Z", "X"):
+            members.append(int(stat.parent.name))
+    return members
+
+
+def stop_session(sid: int, grace: float = STOP_GRACE) -> None:
+    """SIGTERM every live process of session ``sid``, SIGKILL what is left after ``grace``
+    seconds; returns when the session is empty (or after a last grace period)."""
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        for pid in session_members(sid):
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.kill(pid, sig)
+        end = time.monotonic() + grace
+        while session_members(sid) and time.monotonic() < end:
+            time.sleep(0.1)
+        if not session_members(sid):
+            return
+
+
+def _child_setup(parent: int) -> None:
+    """In the child, before exec: unblock the interrupts (blocked in the parent around the
+    spawn), SIGTERM when the parent dies (Linux), and stop at once if it is already gone."""
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, INTERRUPTS)
+    with contextlib.suppress(OSError):  # not Linux: the watchdog still guards
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGTERM,
+                                                       0, 0, 0)
+    if os.getppid() != parent:
+        os._exit(1)
 
 
 class Child:
-    """A command in its own process group, watched (see the module docstring)."""
+    """A command in a session of its own, watched (see the module docstring)."""
 
     def __init__(self, cmd: list[str], *, cwd, stdout, env: dict, keep_fds=()):
-        self.proc = subprocess.Popen(cmd, cwd=cwd, stdout=stdout, stderr=subprocess.STDOUT,
-                                     env=env, start_new_session=True,
-                                     preexec_fn=_die_with_parent)
-        self.pgid = self.proc.pid
-        self.watchdog = subprocess.Popen(
-            [sys.executable, "-c", WATCHDOG, str(self.pgid)], stdin=subprocess.PIPE,
-            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
-            pass_fds=tuple(keep_fds))
+        parent = os.getpid()
+        blocked = signal.pthread_sigmask(signal.SIG_BLOCK, INTERRUPTS)
+        try:
+            self.proc = subprocess.Popen(cmd, cwd=cwd, stdout=stdout, stderr=subprocess.STDOUT,
+                                         env=env, start_new_session=True,
+                                         preexec_fn=lambda: _child_setup(parent))
+            self.sid = self.proc.pid
+            try:
+                self.watchdog = subprocess.Popen(
+                    [sys.executable, "-c", WATCHDOG, str(self.sid)], stdin=subprocess.PIPE,
+                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                    start_new_session=True, pass_fds=tuple(keep_fds),
+                    preexec_fn=lambda: signal.pthread_sigmask(signal.SIG_UNBLOCK, INTERRUPTS))
+            except BaseException:
+                stop_session(self.sid)
+                raise
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
 
     def poll(self) -> int | None:
         return self.proc.poll()
@@ -103,57 +140,20 @@ class Child:
     def wait(self) -> int:
         return self.proc.wait()
 
-    def stop(self) -> None:
-        """Stop the whole group: SIGTERM, then SIGKILL after :data:`STOP_GRACE` seconds."""
-        for sig in (signal.SIGTERM, signal.SIGKILL):
-            try:
-                os.killpg(self.pgid, sig)
-            except ProcessLookupError:
-                break
-            end = time.monotonic() + STOP_GRACE
-            while time.monotonic() < end and group_alive(self.pgid):
-                self.proc.poll()
-                time.sleep(0.1)
-            if not group_alive(self.pgid):
-                break
-        self.proc.poll()
-
     def close(self) -> None:
-        """The group is finished (or stopped): release the watchdog."""
-        if self.proc.poll() is None or group_alive(self.pgid):
-            self.stop()
-        try:
+        """The command ended, or the caller gives up on it: stop whatever of the session is
+        left, then release the watchdog."""
+        if self.proc.poll() is None or session_members(self.sid):
+            stop_session(self.sid)
+        self.proc.poll()
+        with contextlib.suppress(BrokenPipeError, ValueError):
             self.watchdog.stdin.write(b"done")
             self.watchdog.stdin.close()
-        except (BrokenPipeError, ValueError):
-            pass
         self.watchdog.wait()
 
 
-def group_alive(pgid: int) -> bool:
-    """Whether a process of group ``pgid`` still runs (zombies, which hold nothing and only
-    wait to be reaped, do not count)."""
-    try:
-        os.killpg(pgid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    proc = Path("/proc")
-    if not proc.is_dir():
-        return True
-    for stat in proc.glob("[0-9]*/stat"):
-        try:
-            fields = stat.read_text().rsplit(")", 1)[1].split()
-        except (OSError, IndexError):
-            continue
-        if len(fields) > 2 and fields[2] == str(pgid) and fields[0] != "Z":
-            return True
-    return False
-
-
 def run(cmd: list[str], *, cwd, stdout, env: dict) -> int:
-    """Run ``cmd`` to its end as a watched :class:`Child`; the group is stopped if this is
+    """Run ``cmd`` to its end as a watched :class:`Child`; the session is stopped if this is
     interrupted. Returns the exit code."""
     child = Child(cmd, cwd=cwd, stdout=stdout, env=env)
     try:

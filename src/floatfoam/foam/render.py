@@ -23,7 +23,7 @@ from floatfoam.foam.ogrid import OGrid, block_mesh_dict
 from floatfoam.hydrostatics.theory import Equilibrium
 from floatfoam.layout import COMMON_DIR
 from floatfoam.meshing.levels import level_index, refinement_ratio
-from floatfoam.settings import MAX_CELLS, memory_text
+from floatfoam.settings import max_cells, memory_text
 
 
 def required(value, name: str):
@@ -50,8 +50,9 @@ def release_state(case: Case, eq: Equilibrium) -> dict:
             "heel": heel, "trim": trim}
 
 
-def ogrid_for(case: Case, level: str, state: dict) -> OGrid:
-    """The O-grid of a circular section at ``level``, the body at its release ``state``."""
+def ogrid_for(case: Case, level: str, state: dict, *, local: bool = True) -> OGrid:
+    """The O-grid of a circular section at ``level``, the body at its release ``state``;
+    ``local``: the run is on this machine, whose memory bounds the cells."""
     body = case.body
     if not (isinstance(body, EllipticCylinder) and body.b == body.c):
         raise InputError(f"body.shape of case {case.name!r}: the CFD mesh is available for "
@@ -74,10 +75,11 @@ def ogrid_for(case: Case, level: str, state: dict) -> OGrid:
         raise InputError(f"mesh.square_half_size = {b:g}: valid is between the radius "
                          f"{body.b:g} and the distance from the body to the tank's ends, bottom "
                          "and top")
-    if grid.cell_count() > MAX_CELLS:
+    if local and grid.cell_count() > max_cells():
         raise InputError(f"[mesh] cell counts at the {level} level give "
-                         f"{memory_text(grid.cell_count())}: valid is at most {MAX_CELLS:,} "
-                         "cells (lower mesh.cells_* or mesh.refinement_ratio)")
+                         f"{memory_text(grid.cell_count())}: valid is at most "
+                         f"{max_cells():,} cells on this machine (lower mesh.cells_* or "
+                         "mesh.refinement_ratio, or run on others with --hostfile)")
     inner, outer = motion_distances(case, grid)
     if not inner < outer:
         raise InputError(f"run.inner_distance = {inner:g} ≥ run.outer_distance = {outer:g} "

@@ -1,6 +1,11 @@
 """Run OpenFOAM applications in a run directory: one log per application, serial or MPI,
 a progress line, a motion CSV written as the solver goes, early divergence detection, resume
 after an interruption.
+
+Written by hand rather than with foamlib's ``FoamCase.run`` (which the rendering could use):
+the solver must run in a watched session that dies with floatfoam
+(:mod:`floatfoam.foam.processes`), under the run's lock, with its log read as it grows — none
+of which foamlib's runner offers.
 """
 
 from __future__ import annotations
@@ -16,8 +21,8 @@ import numpy as np
 
 from floatfoam.foam import processes
 from floatfoam.foam.logwatch import LogWatcher, Step, fatal_block
+from floatfoam.foam.motionlog import RESUMED, MotionWriter
 from floatfoam.layout import mark_done, step_done
-from floatfoam.motion import MOTION_COLUMNS
 
 FOAM_ENV = {
     "WM_PROJECT_DIR": "/usr/share/openfoam",
@@ -97,7 +102,7 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
     log = run_dir / f"log.{name}"
     if log.exists():
         with open(log, "a") as fh:
-            fh.write(f"\n// floatfoam: resumed at {time.strftime('%Y-%m-%d %H:%M:%S')}\n")
+            fh.write(f"\n{RESUMED} at {time.strftime('%Y-%m-%d %H:%M:%S')}\n")
     offset = log.stat().st_size if log.exists() else 0
     watcher = LogWatcher()
     writer = MotionWriter(motion_csv) if motion_csv else None
@@ -197,33 +202,6 @@ def _clock(seconds: float) -> str:
     h, rest = divmod(seconds, 3600)
     m, s = divmod(rest, 60)
     return f"{h}:{m:02d}:{s:02d}" if h else f"{m}:{s:02d}"
-
-
-class MotionWriter:
-    """Append motion rows to a CSV as the solver goes (header written once). On resume,
-    rows at or after the restart time replace the ones of the interrupted run."""
-
-    def __init__(self, path: Path):
-        self.path = path
-        self.last_time = -math.inf
-
-    def append(self, steps: list[Step]) -> None:
-        rows = [r for r in (s.motion_row() for s in steps) if r is not None]
-        if not rows:
-            return
-        if not self.path.exists():
-            self.path.write_text(",".join(MOTION_COLUMNS) + "\n")
-        elif self.last_time == -math.inf:
-            self._truncate_from(rows[0][0])
-        with open(self.path, "a") as fh:
-            for row in rows:
-                fh.write(",".join(f"{v:.10g}" for v in row) + "\n")
-        self.last_time = rows[-1][0]
-
-    def _truncate_from(self, t: float) -> None:
-        lines = self.path.read_text().splitlines()
-        kept = [lines[0]] + [ln for ln in lines[1:] if ln and float(ln.split(",")[0]) < t - 1e-12]
-        self.path.write_text("\n".join(kept) + "\n")
 
 
 def move_aside(run_dir: Path) -> Path:

@@ -80,11 +80,9 @@ def set_aside_incomplete(run_dir: Path, moving: bool) -> list[Path]:
         for times in per_root:
             entries = [p for value, p in times if value == t]
             before = [p for value, p in times if value < t]
-            if not entries:
-                continue
             previous = before[-1] if before else None
-            if not is_complete(entries[0], required, previous):
-                bad = True
+            if not entries or not is_complete(entries[0], required, previous):
+                bad = True  # a processor without the time is as incomplete as a cut file
         if not bad:
             return moved
         stamp = time.strftime("%Y%m%d-%H%M%S")
@@ -101,3 +99,13 @@ def set_aside_incomplete(run_dir: Path, moving: bool) -> list[Path]:
                         dest = target / f"{prefix}{path.name}.{stamp}-{n}"
                     path.rename(dest)
                     moved.append(dest)
+
+
+def latest_time(run_dir: Path) -> float | None:
+    """The latest time written in full: the run's, or for a parallel run the latest that every
+    ``processor*`` folder holds; None when only the initial time exists. Call it after
+    :func:`set_aside_incomplete`."""
+    run_dir = Path(run_dir)
+    roots = sorted(run_dir.glob("processor[0-9]*")) or [run_dir]
+    latest = [times[-1][0] if times else None for times in map(time_folders, roots)]
+    return None if None in latest else min(latest)

@@ -6,11 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam.dofs import NAMES
+from floatfoam.dofs import DOFS, NAMES
 from floatfoam.potential.radiation import RadiationCoefficients
 from floatfoam.potential.summary import PotentialSummary
-
-UNITS = {"heave": ("kg", "N·s/m"), "roll": ("kg·m²", "N·m·s"), "pitch": ("kg·m²", "N·m·s")}
 
 
 def plot_coefficients(coef: RadiationCoefficients, path: str | Path, *,
@@ -28,7 +26,7 @@ def plot_coefficients(coef: RadiationCoefficients, path: str | Path, *,
                              squeeze=False, sharex=True)
     for col, i in enumerate(dofs):
         name = NAMES[i]
-        unit_a, unit_b = UNITS[name]
+        unit_a, unit_b = DOFS[i].inertia_unit, DOFS[i].damping_unit
         ax_a, ax_b = axes[0, col], axes[1, col]
         ax_a.plot(coef.omega, coef.added_mass[:, i, i], "o-", ms=3, color="tab:blue")
         ax_a.axhline(coef.added_mass_inf[i, i], color="tab:blue", ls="--", lw=0.8,

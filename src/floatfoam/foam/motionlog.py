@@ -1,0 +1,69 @@
+"""motion.csv from the solver's log: written as the solver goes, rebuilt from the whole log.
+
+The six-DoF state the solver prints each step (:mod:`floatfoam.foam.logwatch`) becomes a row of
+the motion CSV (columns in :data:`floatfoam.motion.MOTION_COLUMNS`). A resumed run restarts
+from its last written time: its rows replace those of the interrupted run from that time on.
+The file is never rewritten in place: a new version is written beside it and renamed over it,
+so an interrupt cannot leave it empty or cut.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+from floatfoam.foam.logwatch import LogWatcher, Step
+from floatfoam.motion import MOTION_COLUMNS
+
+RESUMED = "// floatfoam: resumed"  # the separator the runner writes into a resumed log
+
+
+class MotionWriter:
+    """Append motion rows to a CSV as the solver goes (header written once). On resume,
+    rows at or after the restart time replace the ones of the interrupted run."""
+
+    def __init__(self, path: Path):
+        self.path = Path(path)
+        self.last_time = -math.inf
+
+    def append(self, steps: list[Step]) -> None:
+        rows = [r for r in (s.motion_row() for s in steps) if r is not None]
+        if not rows:
+            return
+        if self.last_time == -math.inf:  # the first rows of this solver run
+            self._keep_before(rows[0][0])
+        with open(self.path, "a") as fh:
+            for row in rows:
+                fh.write(",".join(f"{v:.10g}" for v in row) + "\n")
+        self.last_time = rows[-1][0]
+
+    def _keep_before(self, t: float) -> None:
+        """Rewrite the file with the header and the complete rows before ``t`` (a row cut by
+        an interrupt is dropped), atomically."""
+        kept = [",".join(MOTION_COLUMNS)]
+        if self.path.exists():
+            for line in self.path.read_text().splitlines()[1:]:
+                cells = line.split(",")
+                try:
+                    values = [float(c) for c in cells]
+                except ValueError:
+                    continue
+                if len(values) == len(MOTION_COLUMNS) and values[0] < t - 1e-12:
+                    kept.append(line)
+        fresh = self.path.with_name(self.path.name + ".new")
+        fresh.write_text("\n".join(kept) + "\n")
+        os.replace(fresh, self.path)
+
+
+def rebuild_motion(log: Path, csv: Path) -> None:
+    """Write ``csv`` anew from the whole solver log, resumed parts included (for a run whose
+    driver stopped after the solver's last step but before recording it)."""
+    fresh = csv.with_name(csv.name + ".rebuilt")
+    fresh.unlink(missing_ok=True)
+    for part in Path(log).read_text(errors="replace").split(RESUMED):
+        watcher = LogWatcher()
+        steps = watcher.feed(part) + watcher.close()
+        MotionWriter(fresh).append(steps)
+    if fresh.exists():
+        os.replace(fresh, csv)
