@@ -19,9 +19,10 @@ from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.errors import InputError
 from floatfoam.foam import render, runlock, timedirs
-from floatfoam.foam.driver import check_path, check_ranks
+from floatfoam.foam.driver import check_ranks
 from floatfoam.foam.logwatch import LogWatcher, fatal_block
 from floatfoam.foam.motionlog import RESUMED, rebuild_motion
+from floatfoam.foam.runner import check_path
 from floatfoam.motion import read_motion
 
 DATA = Path(__file__).parent / "data"

@@ -11,7 +11,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import re
 import shutil
 import sys
 from dataclasses import dataclass
@@ -102,7 +101,7 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     state = release_state(case, equilibrium)
     grid = ogrid_for(case, level, state, local=hostfile is None)  # bad input fails here
     label = f"{case.name}/{level}"
-    check_path(layout.run_dir(case.name, level, build_dir))
+    runner.check_path(layout.run_dir(case.name, level, build_dir))
     with RunLock(lock_path(case.name, level, build_dir), label) as lock:
         if lock.stale_holder():
             print(f"[{label}] the run of PID {lock.stale_holder()} ended without finishing; "
@@ -166,16 +165,3 @@ def check_ranks(np_: int, hostfile: Path | None) -> None:
         print(f"warning: --np {np_} is more than the {cores} cores of this machine: the ranks "
               f"will share them and run far slower than --np {cores}; give --hostfile to use "
               "other machines", file=sys.stderr)
-
-
-UNSAFE = re.compile(r"[\s'\"]")
-
-
-def check_path(run_dir: Path) -> None:
-    """OpenFOAM takes no white space or quote in a case path (its file names drop them):
-    refuse such a run directory before anything is written."""
-    bad = UNSAFE.search(str(run_dir))
-    if bad:
-        raise InputError(f"run directory {str(run_dir)!r} holds {bad.group()!r}, which OpenFOAM "
-                         "cannot take in a case path: valid is a case name and build folder "
-                         "(FLOATFOAM_BUILD) without spaces or quotes")

@@ -12,7 +12,7 @@ import re
 from pathlib import Path
 
 from floatfoam.foam.dictionaries import write_dict
-from floatfoam.foam.runner import run_app
+from floatfoam.foam.runner import check_path, run_app
 
 PATCH_TYPES = {  # physical group → OpenFOAM patch type
     "body": "wall",
@@ -72,6 +72,7 @@ def convert_and_check(msh: Path, case_dir: Path, types: dict | None = None) -> d
     ``max_aspect_ratio``, ``mesh_ok`` (checkMesh's verdict), ``patches`` ({name: type}) and
     ``log`` (checkMesh's log).
     """
+    check_path(case_dir)
     case_dir.mkdir(parents=True, exist_ok=True)
     write_system(case_dir)
     run_app(case_dir, "gmshToFoam", ["gmshToFoam", str(Path(msh).resolve())], quiet=True,

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import sys
 import time
 from dataclasses import dataclass
@@ -19,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from floatfoam.errors import InputError
 from floatfoam.foam import processes
 from floatfoam.foam.logwatch import LogWatcher, Step, fatal_block
 from floatfoam.foam.motionlog import RESUMED, MotionWriter
@@ -48,6 +50,19 @@ def foam_env() -> dict:
     env = dict(os.environ)
     env.update(FOAM_ENV)
     return env
+
+
+UNSAFE = re.compile(r"[\s'\"]")
+
+
+def check_path(run_dir: Path) -> None:
+    """OpenFOAM takes no white space or quote in a case path (its file names drop them):
+    refuse such a case directory before anything is written."""
+    bad = UNSAFE.search(str(run_dir))
+    if bad:
+        raise InputError(f"case directory {str(run_dir)!r} holds {bad.group()!r}, which OpenFOAM "
+                         "cannot take in a case path: valid is a case name and build folder "
+                         "(FLOATFOAM_BUILD) without spaces or quotes")
 
 
 def run_app(run_dir: Path, name: str, argv: list[str], *, np_: int = 1,
