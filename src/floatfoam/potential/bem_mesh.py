@@ -25,13 +25,26 @@ from floatfoam.potential.sections import panel_nodes, wetted_contour
 
 DEFAULT_PANELS_3D = 800  # hemisphere: ≤ 1.6 % from Hulme (1982) at ka ≤ 2 (see tests/)
 SYMMETRY_TOL = 1e-4  # odd moments of the wetted surface, relative (see symmetry_planes)
+SNAP = 0.05  # × the mean edge of the body's surface mesh: waterline snapping (wetted_triangles)
 FEATURE_ANGLE = 30.0  # degrees: facets meeting at a sharper angle keep their edge (box corners)
 
 
 def wetted_triangles(body, z_c: float, heel: float, trim: float) -> np.ndarray:
-    """Wetted part (T, 3, 3) of the body's surface mesh at an attitude, earth frame."""
+    """Wetted part (T, 3, 3) of the body's surface mesh at an attitude, earth frame.
+
+    Vertices within :data:`SNAP` of a mean edge of the free surface are moved onto it first:
+    a waterline a hair from a ring of vertices (a sphere floating at its equator) would
+    otherwise cut slivers thinner than round-off, on which gmsh's surface classification never
+    returns. The move is far below the panel size the hull is remeshed to; facets then lying
+    in the free surface itself (a flat bottom at the waterline) are not wetted and dropped.
+    """
     vertices, faces = body.surface_mesh()
-    return clip_triangles(to_earth(vertices, z_c, heel, trim)[faces])
+    earth = to_earth(vertices, z_c, heel, trim)
+    edge = float(np.linalg.norm(earth[faces[:, 1]] - earth[faces[:, 0]], axis=1).mean())
+    earth[np.abs(earth[:, 2]) < SNAP * edge, 2] = 0.0
+    triangles = earth[faces]
+    in_surface = np.all(triangles[:, :, 2] == 0.0, axis=1)
+    return clip_triangles(triangles[~in_surface])
 
 
 def merge_vertices(triangles: np.ndarray, rel_tol: float = 1e-9):
