@@ -9,6 +9,11 @@ class InputError(ValueError):
     """
 
 
+class ComputationError(RuntimeError):
+    """A computation that could not be done (a solver failed, diverged, crashed or ran out of
+    its time): one line naming what failed and what to change; the CLI exits with code 1."""
+
+
 def is_number(value) -> bool:
     """Whether ``value`` is a finite number (a boolean is not one)."""
     import math

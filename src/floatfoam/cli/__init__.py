@@ -9,9 +9,10 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import signal
 import sys
 
-from floatfoam.errors import InputError
+from floatfoam.errors import ComputationError, InputError
 
 COMMANDS = ["theory", "gz", "mesh", "run", "batch", "analyse", "report", "potential",
             "decay_model"]
@@ -32,13 +33,17 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     """Run one command. Every error is one line on stderr, never a traceback (unless --debug):
     exit 2 for bad input (and a case or build folder that cannot be used), 1 for a failure,
-    130 when interrupted, 141 when the reader of the output went away (``| head``); ``run``
-    adds 75 and 128 + signal (floatfoam.cli.run)."""
+    130 (Ctrl-C) or 143 (SIGTERM) when interrupted, 141 when the reader of the output went away
+    (``| head``); ``run`` adds 75 and 129 (SIGHUP) (floatfoam.cli.run)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     prog = f"floatfoam {args.command}"
+    previous = signal.signal(signal.SIGTERM, _terminated)
     try:
         return int(args.func(args) or 0)
+    except Terminated:
+        print(f"{prog}: interrupted (SIGTERM)", file=sys.stderr)
+        return 128 + signal.SIGTERM
     except InputError as err:
         if args.debug:
             raise
@@ -67,17 +72,27 @@ def main(argv: list[str] | None = None) -> int:
         where = f" ({err.filename})" if err.filename else ""
         print(f"{prog}: failed: {err.strerror or err}{where}", file=sys.stderr)
         return 1
+    except ComputationError as err:  # a solver failed (floatfoam mesh, potential ...): one line
+        if args.debug:
+            raise
+        print(f"{prog}: {err}", file=sys.stderr)
+        return 1
     except Exception as err:  # noqa: BLE001 - the last guard against a traceback
-        from floatfoam.foam.runner import RunError
-
-        if isinstance(err, RunError):  # an OpenFOAM application failed (floatfoam mesh ...)
-            print(f"{prog}: {err}", file=sys.stderr)
-            return 1
         if args.debug:
             raise
         print(f"{prog}: internal error: {type(err).__name__}: {err} (rerun with --debug for "
               "the traceback, and please report it)", file=sys.stderr)
         return 1
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+class Terminated(BaseException):
+    """SIGTERM reached a command (``floatfoam run`` handles its own, floatfoam.foam)."""
+
+
+def _terminated(signum, frame):
+    raise Terminated
 
 
 if __name__ == "__main__":

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam.errors import InputError
+from floatfoam.errors import ComputationError, InputError
 from floatfoam.foam import processes
 from floatfoam.foam.logwatch import LogWatcher, Step, fatal_block
 from floatfoam.foam.motionlog import RESUMED, MotionWriter
@@ -34,7 +34,7 @@ FOAM_ENV = {
 }
 
 
-class RunError(RuntimeError):
+class RunError(ComputationError):
     """An OpenFOAM application failed or the solution diverged (message: one line)."""
 
 

@@ -1,0 +1,98 @@
+"""External computations with a bound: gmsh and Capytaine in a child process.
+
+gmsh can loop for ever on a degenerate surface and can crash the process with a segmentation
+fault; a BEM solve can be far longer than its user meant. :func:`run_bounded` runs such work in
+a child process (a fresh interpreter: ``func`` and its arguments must pickle) and waits for it
+with a time limit: a child that runs past it, crashes or is
+interrupted is stopped, and the caller gets one :class:`~floatfoam.errors.ComputationError`
+line (or the KeyboardInterrupt) instead of a hang, a core dump or a traceback. The child dies
+with its parent (parent-death signal), so it cannot outlive the command either.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import multiprocessing
+import signal
+import sys
+import time
+import traceback
+
+from floatfoam.errors import ComputationError, InputError
+
+PR_SET_PDEATHSIG = 1
+
+
+def _child(conn, func, args, kwargs) -> None:
+    with contextlib.suppress(OSError):
+        ctypes.CDLL("libc.so.6").prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides
+    try:
+        conn.send(("ok", func(*args, **kwargs)))
+    except (InputError, ComputationError) as err:
+        conn.send(("error", type(err).__name__, str(err)))
+    except BaseException as err:  # noqa: BLE001 - reported to the parent as one line
+        last = traceback.extract_tb(err.__traceback__)[-1:]
+        where = f" at {last[0].filename}:{last[0].lineno}" if last else ""
+        conn.send(("error", "ComputationError", f"{type(err).__name__}: {err}{where}"))
+    finally:
+        conn.close()
+
+
+def run_bounded(func, *args, limit: float, label: str, advice: str, **kwargs):
+    """``func(*args, **kwargs)`` in a child process, at most ``limit`` seconds; returns its
+    result. ``label`` names the work and ``advice`` what to change, in the error line."""
+    # spawn, not fork: a process that has used OpenMP threads (Capytaine, BLAS) cannot fork a
+    # child that uses them again — measured here, the forked child of such a process hangs
+    context = multiprocessing.get_context("spawn")
+    parent, child = context.Pipe(duplex=False)
+    process = context.Process(target=_child, args=(child, func, args, kwargs), daemon=True)
+    process.start()
+    child.close()
+    start = time.monotonic()
+    try:
+        while not parent.poll(0.2):
+            if not process.is_alive():
+                break
+            if time.monotonic() - start > limit:
+                raise ComputationError(f"{label}: not done within {limit:.0f} s; {advice}")
+        message = None
+        if parent.poll(0):
+            with contextlib.suppress(EOFError):  # the child died: its end of the pipe closed
+                message = parent.recv()
+        if message is None:
+            process.join(1.0)
+            code = process.exitcode
+            cause = (f"crashed ({signal.Signals(-code).name})" if code is not None and code < 0
+                     else f"stopped (exit code {code})")
+            raise ComputationError(f"{label}: {cause}; {advice}")
+    finally:
+        if process.is_alive():
+            process.kill()
+        process.join()
+        parent.close()
+    if message[0] == "ok":
+        return message[1]
+    kind, text = message[1], message[2]
+    raise (InputError if kind == "InputError" else ComputationError)(text)
+
+
+class Progress:
+    """A progress line on stderr at most every ``every`` seconds: done / total, elapsed, ETA."""
+
+    def __init__(self, label: str, total: int, every: float = 5.0):
+        self.label, self.total, self.every = label, total, every
+        self.start = time.monotonic()
+        self.last = self.start
+
+    def update(self, done: int) -> None:
+        now = time.monotonic()
+        if now - self.last < self.every and done < self.total:
+            return
+        self.last = now
+        elapsed = now - self.start
+        eta = elapsed / done * (self.total - done) if done else float("nan")
+        eta_text = f"{eta:.0f} s" if eta == eta else "--"
+        print(f"[{self.label}] {done}/{self.total} frequencies, {elapsed:.0f} s, ETA {eta_text}",
+              file=sys.stderr, flush=True)
