@@ -11,6 +11,7 @@ import pytest
 from floatfoam.bodies.geometry import rotation
 from floatfoam.bodies.shapes import EllipticCylinder
 from floatfoam.case import load_case
+from floatfoam.errors import InputError
 from floatfoam.hydrostatics.gz import righting_arm
 from floatfoam.hydrostatics.theory import (
     equilibrium,
@@ -193,11 +194,19 @@ def test_wall_sided_box_gz():
 
 
 def test_negative_gm_capsizes_linear_and_nonlinear():
-    """G raised above the metacentre: the linear model grows exponentially; the rigorous one
-    leaves the upright position and lolls to large angles."""
+    """G raised above the metacentre: the linear solution grows exponentially (so the linear
+    decay model refuses such a body, issue 13); the rigorous one leaves the upright position
+    and lolls to large angles."""
     case = load_case("box_bilge", ["mass.cog=[0.0, 0.0, 0.06]", "release.heel=1.0"])
-    linear = decay_series(case, "linear", duration=1.0)
-    assert abs(linear["roll"][-1]) > 5.0
+    eq = equilibrium(case)
+    stiffness = stiffness_matrix(case, eq)
+    mass = np.diag([case.mass, case.mass * case.gyradius[0] ** 2,
+                    case.mass * case.gyradius[1] ** 2])
+    t = np.linspace(0.0, 1.0, 201)
+    x, _ = linear_decay(mass, stiffness, [0.0, math.radians(1.0), 0.0], t)
+    assert abs(math.degrees(x[-1, 1])) > 5.0
+    with pytest.raises(InputError, match=r"roll capsizes \(GM = -"):
+        decay_series(case, "linear", duration=1.0)
     nonlinear = decay_series(case, "nonlinear", duration=3.0)
     assert np.abs(nonlinear["roll"]).max() > 10.0
 

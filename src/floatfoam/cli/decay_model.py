@@ -54,6 +54,12 @@ def run(args) -> int:
     for dof, res in report["dofs"].items():
         if "error" in res:
             print(f"  {dof}: not analysed ({res['error']})")
+        elif "swing" in res:
+            stable = res["stable_attitude"]
+            where = f"{stable:.0f}°" if stable is not None else "beyond 180°"
+            print(f"  {dof}: capsizes (GM = {res['GM']:.4g} m): the nonlinear model turns the "
+                  f"body over towards its stable attitude at {where} (GZ curve), swinging "
+                  f"between {res['swing'][0]:.1f}° and {res['swing'][1]:.1f}° (undamped)")
         else:
             print(f"  {dof}: period {res['period']:.5g} s, damping ratio "
                   f"{res['damping_ratio']:.4g} (fit of the whole record)")
@@ -61,13 +67,19 @@ def run(args) -> int:
 
 
 def _analyse(case, series) -> dict:
-    """Period and damping ratio of each released DoF, by the decay analysis."""
+    """Period and damping ratio of each released DoF, by the decay analysis; for a DoF the
+    theory says capsizes, the attitude the nonlinear model turns the body over to."""
     from floatfoam.analysis.decay import analyse_decay
+    from floatfoam.hydrostatics.theory import theory_summary
 
+    theory = theory_summary(case)
     out = {}
     for entry in dofs.released(case.release):
         column = entry.column
         scale = math.pi / 180.0 if entry.is_angle else 1.0
+        if entry.is_angle and theory.dofs[entry.name].verdict == "capsizes":
+            out[column] = _capsized(case, theory, entry, series[column])
+            continue
         try:
             summary = analyse_decay(series["time"], series[column] * scale).summary()
             out[column] = {"period": summary["period_mean"],
@@ -75,3 +87,24 @@ def _analyse(case, series) -> dict:
         except (InputError, ValueError, RuntimeError) as err:
             out[column] = {"error": str(err).splitlines()[0]}
     return out
+
+
+def _capsized(case, theory, entry, angle) -> dict:
+    """Where a capsizing body goes: the stable attitude of the GZ curve (the first angle where
+    GZ turns from negative to zero or positive, to 1e-9 of the size), and the range the
+    nonlinear model swings over once it has left the upright — with no damping it swings about
+    that attitude for ever, so the range brackets it."""
+    import numpy as np
+
+    from floatfoam.hydrostatics.gz import gz_curve
+
+    angle = np.asarray(angle, dtype=float)
+    away = np.nonzero(np.abs(angle - angle[0]) > 0.5 * np.ptp(angle))[0]
+    after = angle[away[0]:] if len(away) else angle
+    curve = gz_curve(case, 180.0, 1.0)
+    tol = 1e-9 * case.body.size
+    turns = [float(a) for a, g0, g1 in zip(curve.angles[1:], curve.gz[:-1], curve.gz[1:],
+                                           strict=True) if g0 < -tol and g1 >= -tol]
+    return {"GM": theory.dofs[entry.name].metacentric_height,
+            "stable_attitude": turns[0] if turns else None,
+            "swing": [float(after.min()), float(after.max())]}

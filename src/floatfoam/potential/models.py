@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from floatfoam.bodies.geometry import rotation
-from floatfoam.dofs import DOFS
+from floatfoam.dofs import DOFS, released
 from floatfoam.errors import InputError
 
 MODELS = ("linear", "nonlinear", "cummins")
@@ -58,6 +58,8 @@ def decay_series(case, model: str, *, duration: float | None = None, dt: float |
     if model not in MODELS:
         raise InputError(f"--model {model!r}: valid models are {', '.join(MODELS)}")
     eq, g_pos, mass, stiffness, x0 = _setup(case)
+    if model != "nonlinear":
+        refuse_capsizing(case, eq, stiffness, model)
     scales = time_scales(mass, stiffness)
     if duration is None:
         duration = PERIODS * float(scales.max()) if len(scales) else 10.0
@@ -90,6 +92,23 @@ def decay_series(case, model: str, *, duration: float | None = None, dt: float |
                pitch=math.degrees(eq.trim) + x[:, 2] * deg, yaw=np.zeros_like(t),
                w=v[:, 0], p=v[:, 1] * deg, q=v[:, 2] * deg, r=np.zeros_like(t))
     return out
+
+
+def refuse_capsizing(case, eq, stiffness, model: str) -> None:
+    """A linear model follows oscillations only: a released DoF whose theory says it capsizes
+    (GM < 0) would grow without bound (e^{t/τ}); refuse, with the verdict and what is valid."""
+    from floatfoam.hydrostatics.theory import verdict
+
+    rgv = case.rho * case.g * eq.immersed.volume
+    for entry in released(case.release):
+        if entry.index == 0:
+            continue  # heave: a floating body's heave stiffness ρgA is positive
+        gm = stiffness[entry.index, entry.index] / rgv
+        if verdict(gm, case.body.size, eq.immersed.exact) == "capsizes":
+            raise InputError(f"--model {model}: {entry.name} capsizes (GM = {gm:.4g} m), and a "
+                             "linear model has no oscillation to follow; valid is --model "
+                             "nonlinear (exact hydrostatics: it turns the body over to its "
+                             "stable attitude)")
 
 
 def _cummins(case, eq, g_pos, mass, stiffness, x0, t, nonlinear_restoring, coefficients):
