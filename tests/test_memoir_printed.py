@@ -22,6 +22,7 @@ from floatfoam.hydrostatics import printed as pr
 from floatfoam.hydrostatics import printed_ellipsoid as pe
 from floatfoam.hydrostatics.immersion import immersed
 from floatfoam.hydrostatics.theory import theory_summary
+from floatfoam.hydrostatics.verdict import verdict
 
 RHO, G = 1000.0, 9.81
 CLOSED, ROOT, QUAD = 1e-12, 1e-9, 1e-10
@@ -65,7 +66,7 @@ def test_circle_eq9_eq10_p51_are_exact(a, h_over_a, kg_over_a):
 def test_p53_verdict_circle_and_sphere():
     a = 0.3
     limit = pr.p53_circle_sphere_kg_limit(a)
-    verdicts = [pr.verdict(limit - kg, a) for kg in (a * (1 - 1e-6), a, a * (1 + 1e-6))]
+    verdicts = [verdict(limit - kg, a) for kg in (a * (1 - 1e-6), a, a * (1 + 1e-6))]
     assert verdicts == ["oscillates", "neutral", "capsizes"]
 
 

@@ -7,12 +7,13 @@ which adds its parser and sets ``func`` (called with the parsed args, returns an
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import os
-import signal
 import sys
 
 from floatfoam.errors import ComputationError, InputError
+from floatfoam.interrupts import SignalInterruptError, signals_interrupt
 
 COMMANDS = ["theory", "gz", "mesh", "run", "batch", "analyse", "report", "potential",
             "decay_model"]
@@ -33,17 +34,18 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     """Run one command. Every error is one line on stderr, never a traceback (unless --debug):
     exit 2 for bad input (and a case or build folder that cannot be used), 1 for a failure,
-    130 (Ctrl-C) or 143 (SIGTERM) when interrupted, 141 when the reader of the output went away
-    (``| head``); ``run`` adds 75 and 129 (SIGHUP) (floatfoam.cli.run)."""
+    128 + signal when interrupted (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP), 141 when the reader of
+    the output went away (``| head``); ``run`` adds 75 (floatfoam.cli.run)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     prog = f"floatfoam {args.command}"
-    previous = signal.signal(signal.SIGTERM, _terminated)
     try:
-        return int(args.func(args) or 0)
-    except Terminated:
-        print(f"{prog}: interrupted (SIGTERM)", file=sys.stderr)
-        return 128 + signal.SIGTERM
+        with signals_interrupt():  # a signal stops the command: one line, 128 + signal
+            return int(args.func(args) or 0)
+    except SignalInterruptError as err:
+        with contextlib.suppress(OSError):  # a closed terminal (SIGHUP) takes stderr too
+            print(f"{prog}: interrupted ({err})", file=sys.stderr)
+        return err.exit_code
     except InputError as err:
         if args.debug:
             raise
@@ -54,11 +56,6 @@ def main(argv: list[str] | None = None) -> int:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 141
-    except KeyboardInterrupt:
-        if args.debug:
-            raise
-        print(f"{prog}: interrupted", file=sys.stderr)
-        return 130
     except (PermissionError, NotADirectoryError, IsADirectoryError) as err:
         if args.debug:
             raise
@@ -83,16 +80,6 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{prog}: internal error: {type(err).__name__}: {err} (rerun with --debug for "
               "the traceback, and please report it)", file=sys.stderr)
         return 1
-    finally:
-        signal.signal(signal.SIGTERM, previous)
-
-
-class Terminated(BaseException):
-    """SIGTERM reached a command (``floatfoam run`` handles its own, floatfoam.foam)."""
-
-
-def _terminated(signum, frame):
-    raise Terminated
 
 
 if __name__ == "__main__":

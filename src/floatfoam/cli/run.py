@@ -7,6 +7,7 @@ from pathlib import Path
 
 from floatfoam.cli.common import add_case_arguments
 from floatfoam.errors import InputError
+from floatfoam.interrupts import SignalInterruptError
 from floatfoam.layout import LEVELS
 
 EXIT_LOCKED = 75  # EX_TEMPFAIL (sysexits.h): another run holds the directory, try later
@@ -30,20 +31,17 @@ def run(args) -> int:
     143 SIGTERM, 129 SIGHUP)."""
     from floatfoam.case import load_case
     from floatfoam.foam.driver import run_case
-    from floatfoam.foam.processes import SignalInterruptError, signals_interrupt
     from floatfoam.foam.runlock import RunLockedError
     from floatfoam.foam.runner import RunError
     from floatfoam.hydrostatics.theory import equilibrium
 
     try:
-        with signals_interrupt():  # from here on, a signal is one line and stops the solver
-            case = load_case(args.case, args.overrides)
-            if args.level not in LEVELS:
-                raise InputError(f"--level {args.level!r}: valid levels are "
-                                 f"{', '.join(LEVELS)}")
-            eq = equilibrium(case)  # solved once, handed to the rendering and the summary
-            result = run_case(case, args.level, args.np, args.force, equilibrium=eq,
-                              hostfile=args.hostfile)
+        case = load_case(args.case, args.overrides)
+        if args.level not in LEVELS:
+            raise InputError(f"--level {args.level!r}: valid levels are {', '.join(LEVELS)}")
+        eq = equilibrium(case)  # solved once, handed to the rendering and the summary
+        result = run_case(case, args.level, args.np, args.force, equilibrium=eq,
+                          hostfile=args.hostfile)
     except RunError as err:
         _say(f"floatfoam run: {err}")
         return 1

@@ -4,8 +4,9 @@ Every OpenFOAM application (and ``mpirun`` with its ranks) runs in a session of 
 MPI puts each rank in a process group of its own but keeps them in mpirun's session, so the
 session is what holds "the solver". Three guards keep it from running on without floatfoam:
 
-* SIGINT, SIGTERM and SIGHUP of the driver raise :class:`SignalInterruptError` (inside
-  :func:`signals_interrupt`), and the ``finally`` of the caller stops the session;
+* SIGINT, SIGTERM and SIGHUP of the driver raise
+  :class:`~floatfoam.interrupts.SignalInterruptError`, and the ``finally`` of the caller stops
+  the session;
 * the direct child gets SIGTERM from the kernel if the driver dies (``PR_SET_PDEATHSIG``), so
   that mpirun can take its ranks down;
 * a watchdog process (:data:`WATCHDOG`) holds a pipe from the driver: when the pipe closes
@@ -22,7 +23,6 @@ so that an interrupt cannot fall between the two.
 from __future__ import annotations
 
 import contextlib
-import ctypes
 import os
 import signal
 import subprocess
@@ -30,9 +30,9 @@ import sys
 import time
 from pathlib import Path
 
-PR_SET_PDEATHSIG = 1
+from floatfoam.interrupts import INTERRUPTS, die_with_parent
+
 STOP_GRACE = 5.0  # s between SIGTERM and SIGKILL of a session
-INTERRUPTS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 WATCHDOG = r"""
 import sys
@@ -41,35 +41,6 @@ word = sys.stdin.buffer.read()  # returns when the driver closes the pipe or die
 if word.strip() != b"done":
     stop_session(int(sys.argv[1]))
 """
-
-
-class SignalInterruptError(BaseException):
-    """The driver received SIGINT, SIGTERM or SIGHUP (``signum``). A BaseException, as
-    KeyboardInterrupt is, so that no ``except Exception`` on the way swallows it."""
-
-    def __init__(self, signum: int):
-        super().__init__(signal.Signals(signum).name)
-        self.signum = signum
-        self.time: float | None = None  # the simulated time reached, when a solver ran
-
-    @property
-    def exit_code(self) -> int:
-        """128 + the signal number: 130 for SIGINT, 143 for SIGTERM, 129 for SIGHUP."""
-        return 128 + self.signum
-
-
-@contextlib.contextmanager
-def signals_interrupt():
-    """Within the block, SIGINT, SIGTERM and SIGHUP raise :class:`SignalInterruptError`."""
-    def handler(signum, frame):
-        raise SignalInterruptError(signum)
-
-    previous = {s: signal.signal(s, handler) for s in INTERRUPTS}
-    try:
-        yield
-    finally:
-        for s, h in previous.items():
-            signal.signal(s, h)
 
 
 def session_members(sid: int) -> list[int]:
@@ -102,11 +73,9 @@ def stop_session(sid: int, grace: float = STOP_GRACE) -> None:
 
 def _child_setup(parent: int) -> None:
     """In the child, before exec: unblock the interrupts (blocked in the parent around the
-    spawn), SIGTERM when the parent dies (Linux), and stop at once if it is already gone."""
+    spawn), SIGTERM when the parent dies, and stop at once if it is already gone."""
     signal.pthread_sigmask(signal.SIG_UNBLOCK, INTERRUPTS)
-    with contextlib.suppress(OSError):  # not Linux: the watchdog still guards
-        ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGTERM,
-                                                       0, 0, 0)
+    die_with_parent(signal.SIGTERM)  # not Linux: the watchdog still guards
     if os.getppid() != parent:
         os._exit(1)
 

@@ -24,6 +24,7 @@ from floatfoam.errors import ComputationError, InputError
 from floatfoam.foam import processes
 from floatfoam.foam.logwatch import LogWatcher, Step, fatal_block
 from floatfoam.foam.motionlog import RESUMED, MotionWriter
+from floatfoam.interrupts import SignalInterruptError
 from floatfoam.layout import mark_done, step_done
 
 FOAM_ENV = {
@@ -108,7 +109,7 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
 
     The log of a resumed run is appended to ``log.<solver>`` after a separator, so earlier
     output is never lost. The solver runs in a watched process group (``keep_fds``: the run's
-    lock, held by its watchdog); a :class:`~floatfoam.foam.processes.SignalInterruptError`
+    lock, held by its watchdog); a :class:`~floatfoam.interrupts.SignalInterruptError`
     stops it and is re-raised with the last time reached (``time``). A run that ends before
     ``end_time`` is an error. Returns the parsed steps of this invocation.
     """
@@ -157,7 +158,7 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                 if finished:
                     break
                 time.sleep(0.5)
-    except processes.SignalInterruptError as err:
+    except SignalInterruptError as err:
         err.time = watcher.steps[-1].time if watcher.steps else None
         raise
     finally:

@@ -30,11 +30,11 @@ import numpy as np
 
 from floatfoam.errors import InputError, number
 from floatfoam.hydrostatics.roots import brentq
+from floatfoam.hydrostatics.verdict import verdict as neutral_verdict
 
 _x, _w = np.polynomial.legendre.leggauss(48)
 GAUSS_NODES, GAUSS_WEIGHTS = 0.5 * (_x + 1.0), 0.5 * _w  # on [0, 1]
 REFERENCE = "Le Barbier, Ann. math. pures appl. 8 (1817-1818) 37 ff."
-NEUTRAL_RTOL = 1e-9  # docs/conventions.md: GM = 0 to 1e-9 of the body size is 'neutral'
 
 
 def _positive(name: str, value) -> float:
@@ -56,10 +56,7 @@ def _linear_result(*, draft, section_or_volume, length, breadth_or_area, kb, bm,
     waterplane_area = breadth_or_area * length
     km = kb + bm
     gm = km - kg
-    if abs(gm) <= NEUTRAL_RTOL * size:
-        verdict = "neutral"
-    else:
-        verdict = "oscillates" if gm > 0 else "capsizes"
+    verdict = neutral_verdict(gm, size)
     omega_h = math.sqrt(g * waterplane_area / volume)
     roll_period = None
     if verdict == "oscillates":

@@ -16,6 +16,7 @@ from floatfoam.bodies.shapes import ConicCylinder, Ellipsoid, EllipticCylinder
 from floatfoam.hydrostatics import memoir
 from floatfoam.hydrostatics import printed as pr
 from floatfoam.hydrostatics import printed_ellipsoid as pe
+from floatfoam.hydrostatics.verdict import verdict
 
 # theory key <- memoir key
 KEYS = {"draft": "draft", "waterplane_area": "waterplane_area", "KB": "kb", "KG": "kg",
@@ -90,7 +91,7 @@ def memoir_printed_values(case, *, kg: float, draft: float) -> dict:
     else:
         return {}
     out["GM_roll"] = out["KG_limit_roll"] - kg
-    out["verdict_roll"] = pr.verdict(out["GM_roll"], body.size)
+    out["verdict_roll"] = verdict(out["GM_roll"], body.size)
     omega2_roll = out.pop("omega2_roll")
     out["roll_period"] = pr.period(omega2_roll) if out["verdict_roll"] == "oscillates" else None
     out.update(draft=draft, KG=kg, source="printed", reference=f"{pr.REFERENCE}: {out['pages']}")

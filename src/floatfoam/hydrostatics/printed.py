@@ -33,24 +33,12 @@ from floatfoam.errors import InputError, number
 
 REFERENCE = ("Le Barbier, Ann. math. pures appl. 8 (1817-1818) 37-61, as printed "
              "(numdam AMPA_1817-1818__8__37_0)")
-NEUTRAL_RTOL = 1e-9  # docs/conventions.md: a margin within 1e-9 of the body size is 'neutral'
 
 
 def period(omega2: float) -> float | None:
     """Period 2 pi / sqrt(Omega) of eps cos(t sqrt(Omega) + eps'), s; None when Omega <= 0
     (the body stays put or capsizes). Omega in rad^2/s^2."""
     return 2.0 * math.pi / math.sqrt(omega2) if omega2 > 0 else None
-
-
-def verdict(margin: float, size: float) -> str:
-    """The memoir's verdict from a stability margin (limit on KG minus KG), in m.
-
-    Returns "oscillates", "neutral" (|margin| <= 1e-9 size, "il restera dans la position où
-    on l'aura placé") or "capsizes".
-    """
-    if abs(margin) <= NEUTRAL_RTOL * size:
-        return "neutral"
-    return "oscillates" if margin > 0 else "capsizes"
 
 
 def positive(value, name: str) -> float:
@@ -66,7 +54,7 @@ def draft_below(draft, top: float, what: str) -> float:
     return H
 
 
-def _stiffness_factor(mass, gyradius, rho, g) -> float:
+def stiffness_factor(mass, gyradius, rho, g) -> float:
     """g rho / (M K^2), the factor in front of every printed rotation formula."""
     return g * rho / (positive(mass, "mass") * positive(gyradius, "gyradius") ** 2)
 
@@ -133,7 +121,7 @@ def eq10_circle_roll_omega2(radius, draft, kg, gyradius, mass, *, length=1.0, rh
     H = draft_below(draft, 2.0 * a, "the diameter 2a")
     h = number(kg, "kg")
     bracket = (H - a) * math.sqrt(H * (2 * a - H)) / a**2 + math.asin((H - a) / a) + math.pi / 2
-    return a * a * length * _stiffness_factor(mass, gyradius, rho, g) * bracket * (a - h)
+    return a * a * length * stiffness_factor(mass, gyradius, rho, g) * bracket * (a - h)
 
 
 def p51_circle_roll_omega2(radius, draft, kg, gyradius, mass, *, length=1.0, rho=1000.0,
@@ -154,7 +142,7 @@ def p51_circle_roll_omega2(radius, draft, kg, gyradius, mass, *, length=1.0, rho
     h = number(kg, "kg")
     bracket = ((H - a) * math.sqrt(H * (2 * a - H)) / a**2
                + 2.0 * math.atan(math.sqrt(H / (2 * a - H))))
-    return a * a * length * _stiffness_factor(mass, gyradius, rho, g) * bracket * (a - h)
+    return a * a * length * stiffness_factor(mass, gyradius, rho, g) * bracket * (a - h)
 
 
 def p51_arc_identity_as_printed(radius, draft) -> float:
@@ -295,7 +283,7 @@ def p50_roll_omega2(pi_og, wedge_moment, gyradius, mass, *, rho=1000.0, g=9.81) 
     lever rule "Pi : a :: PF : OP" before it is inverted, but the OP it yields is right).
     Right: Pi.OG + Pp = V (KB - KG) + I_wp = V GM.
     """
-    return (_stiffness_factor(mass, gyradius, rho, g)
+    return (stiffness_factor(mass, gyradius, rho, g)
             * (number(pi_og, "pi_og") + number(wedge_moment, "wedge_moment")))
 
 
@@ -390,4 +378,4 @@ def p52_sphere_roll_omega2(radius, draft, kg, gyradius, mass, *, rho=1000.0, g=9
     H = draft_below(draft, 2.0 * a, "the diameter 2a")
     h = number(kg, "kg")
     bracket = (H - a) * (3 * a * a - (H - a) ** 2) + 2 * a**3
-    return math.pi / 3.0 * _stiffness_factor(mass, gyradius, rho, g) * bracket * (a - h)
+    return math.pi / 3.0 * stiffness_factor(mass, gyradius, rho, g) * bracket * (a - h)

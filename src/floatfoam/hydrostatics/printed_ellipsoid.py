@@ -20,12 +20,7 @@ import math
 import numpy as np
 
 from floatfoam.errors import InputError, number
-from floatfoam.hydrostatics.printed import draft_below, positive
-
-
-def _factor(mass, gyradius, rho, g) -> float:
-    return g * rho / (positive(mass, "mass") * positive(gyradius, "gyradius") ** 2)
-
+from floatfoam.hydrostatics.printed import draft_below, positive, stiffness_factor
 
 # ------------------------------------------------------------ any body, eq. (12), p. 58
 
@@ -76,7 +71,7 @@ def eq12_xi_omega2(pi_og, pp_over_cos_alpha, gyradius_y, mass, *, rho=1000.0, g=
     ----------
     p. 58, eq. (12) ("Fp" is OCR for Pp). Right: Pi.OG + int x^2 dA = V GM_pitch.
     """
-    return _factor(mass, gyradius_y, rho, g) * (number(pi_og, "pi_og")
+    return stiffness_factor(mass, gyradius_y, rho, g) * (number(pi_og, "pi_og")
                                                  + number(pp_over_cos_alpha, "pp_over_cos_alpha"))
 
 
@@ -109,14 +104,14 @@ def eq12_psi_omega2_as_printed(pi_og, pq_over_sin_alpha, gyradius_y, mass, *, rh
     eq. (11) has M K'^2, K' about x, for this rotation. Wrong when K' != K, by the factor
     (K'/K)^2 on Omega. See :func:`eq12_psi_omega2`.
     """
-    return _factor(mass, gyradius_y, rho, g) * (number(pi_og, "pi_og")
+    return stiffness_factor(mass, gyradius_y, rho, g) * (number(pi_og, "pi_og")
                                                  + number(pq_over_sin_alpha, "pq_over_sin_alpha"))
 
 
 def eq12_psi_omega2(pi_og, pq_over_sin_alpha, gyradius_x, mass, *, rho=1000.0, g=9.81) -> float:
     """Corrected third line of eq. (12): Omega = g rho (Pi.OG + Pq / sin(alpha)) / (M K'^2),
     K' the radius of gyration about x, as in eq. (11)."""
-    return _factor(mass, gyradius_x, rho, g) * (number(pi_og, "pi_og")
+    return stiffness_factor(mass, gyradius_x, rho, g) * (number(pi_og, "pi_og")
                                                  + number(pq_over_sin_alpha, "pq_over_sin_alpha"))
 
 
@@ -326,7 +321,7 @@ def p60_revolution_roll_omega2_as_printed(a, c, draft, kg, gyradius, mass, *, rh
     h = number(kg, "kg")
     bracket = (((a - H) ** 3 + a * a * (3 * H - a)) * (a - h)
                + 3 * H * H * (2 * c - H) ** 2 * (a**4 - c**4) / (4 * c**4))
-    return math.pi / 3 * _factor(mass, gyradius, rho, g) * bracket
+    return math.pi / 3 * stiffness_factor(mass, gyradius, rho, g) * bracket
 
 
 def revolution_roll_omega2(a, c, draft, kg, gyradius, mass, *, rho=1000.0, g=9.81) -> float:
@@ -343,7 +338,7 @@ def revolution_roll_omega2(a, c, draft, kg, gyradius, mass, *, rho=1000.0, g=9.8
     h = number(kg, "kg")
     bracket = (((c - H) ** 3 + c * c * (3 * H - c)) * (c - h)
                + 3 * H * H * (2 * c - H) ** 2 * (a * a - c * c) / (4 * c * c))
-    return math.pi * a * a / (3 * c * c) * _factor(mass, gyradius, rho, g) * bracket
+    return math.pi * a * a / (3 * c * c) * stiffness_factor(mass, gyradius, rho, g) * bracket
 
 
 def p61_revolution_kg_limit_as_printed(a, c, draft) -> float:

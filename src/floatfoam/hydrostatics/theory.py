@@ -13,9 +13,7 @@ from floatfoam.case import Case
 from floatfoam.hydrostatics.immersion import Immersed, immersed
 from floatfoam.hydrostatics.roots import brentq
 from floatfoam.hydrostatics.summary import DofTheory, TheorySummary
-
-NEUTRAL_TOL_EXACT = 1e-9  # |GM| / size below which GM is zero, closed forms (round-off)
-NEUTRAL_TOL_NUMERIC = 1e-5  # same, numeric path (surface discretisation ~1e-6 of the size)
+from floatfoam.hydrostatics.verdict import verdict
 
 
 @dataclass(frozen=True)
@@ -104,15 +102,6 @@ def stiffness_matrix(case: Case, eq: Equilibrium | None = None) -> np.ndarray:
     c[2, 2] = rg * (i_yy + area * dx**2) + vertical
     c[1, 2] = c[2, 1] = -rg * (i_xy + area * dx * dy)
     return c
-
-
-def verdict(gm: float, size: float, exact: bool) -> str:
-    """Le Barbier's verdict: the body oscillates, stays put (neutral) or capsizes as GM > 0,
-    GM = 0 or GM < 0 (GM is zero within the round-off or discretisation tolerance)."""
-    tol = (NEUTRAL_TOL_EXACT if exact else NEUTRAL_TOL_NUMERIC) * size
-    if abs(gm) <= tol:
-        return "neutral"
-    return "oscillates" if gm > 0 else "capsizes"
 
 
 def natural_period(stiffness: float, inertia: float) -> float | None:

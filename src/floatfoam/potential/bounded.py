@@ -5,14 +5,13 @@ fault; a BEM solve can be far longer than its user meant. :func:`run_bounded` ru
 a child process (a fresh interpreter: ``func`` and its arguments must pickle) and waits for it
 with a time limit: a child that runs past it, crashes or is
 interrupted is stopped, and the caller gets one :class:`~floatfoam.errors.ComputationError`
-line (or the KeyboardInterrupt) instead of a hang, a core dump or a traceback. The child dies
+line (or the interrupt) instead of a hang, a core dump or a traceback. The child dies
 with its parent (parent-death signal), so it cannot outlive the command either.
 """
 
 from __future__ import annotations
 
 import contextlib
-import ctypes
 import multiprocessing
 import signal
 import sys
@@ -20,13 +19,11 @@ import time
 import traceback
 
 from floatfoam.errors import ComputationError, InputError
-
-PR_SET_PDEATHSIG = 1
+from floatfoam.interrupts import die_with_parent
 
 
 def _child(conn, func, args, kwargs) -> None:
-    with contextlib.suppress(OSError):
-        ctypes.CDLL("libc.so.6").prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    die_with_parent(signal.SIGKILL)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides
     try:
         conn.send(("ok", func(*args, **kwargs)))

@@ -97,7 +97,7 @@ def decay_series(case, model: str, *, duration: float | None = None, dt: float |
 def refuse_capsizing(case, eq, stiffness, model: str) -> None:
     """A linear model follows oscillations only: a released DoF whose theory says it capsizes
     (GM < 0) would grow without bound (e^{t/τ}); refuse, with the verdict and what is valid."""
-    from floatfoam.hydrostatics.theory import verdict
+    from floatfoam.hydrostatics.verdict import verdict
 
     rgv = case.rho * case.g * eq.immersed.volume
     for entry in released(case.release):

@@ -286,7 +286,8 @@ def potential_summary(case, *, coefficients: RadiationCoefficients | None = None
     oscillate or is not covered, e.g. pitch of a 2D section), A∞ and what was solved.
     """
     from floatfoam.bodies.geometry import rotation
-    from floatfoam.hydrostatics.theory import equilibrium, stiffness_matrix, verdict
+    from floatfoam.hydrostatics.theory import equilibrium, stiffness_matrix
+    from floatfoam.hydrostatics.verdict import verdict
     from floatfoam.potential.resonance import damping_ratio, mass_matrix, natural_frequency
 
     eq = equilibrium(case)
