@@ -15,11 +15,15 @@ export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export MPLBACKEND := Agg
 
-PHONY_CASES := cylinder_heave
-.PHONY: $(PHONY_CASES) help setup run test mesh mesh-table test-fast lint theory gz potential decay-model report bench-theory bench-potential bench-cfd clean
+# the CFD cases: `make <case>` runs one (LEVEL=coarse|medium|fine NP=2 SET="...")
+CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cylinder_capsize \
+	parabolic_cylinder hyperbolic_cylinder box_bilge box_bilge_heave sphere sphere_25mm sphere_50mm
+.PHONY: $(CFD_CASES) help setup run test mesh mesh-table test-fast lint theory gz potential decay-model report bench-theory bench-potential bench-cfd clean
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
+	@echo "  CFD runs, one target per case (LEVEL=coarse|medium|fine NP=2):"
+	@for c in $(CFD_CASES); do echo "    make $$c"; done
 
 setup:  ## install apt packages and the pinned .venv (idempotent)
 	@bash scripts/setup.sh
@@ -27,8 +31,8 @@ setup:  ## install apt packages and the pinned .venv (idempotent)
 run: setup  ## main job: the default case (Ito cylinder) at the coarse level, with its theory
 	$(FF) run $(CASE) --level $(LEVEL) --np $(NP) $(SETARGS)
 
-cylinder_heave: setup  ## Ito (1977) cylinder heave decay (LEVEL=coarse|medium|fine NP=2)
-	$(FF) run cylinder_heave --level $(LEVEL) --np $(NP) $(SETARGS)
+$(CFD_CASES): setup
+	$(FF) run $@ --level $(LEVEL) --np $(NP) $(SETARGS)
 
 test: setup  ## all tests: unit tests and the coarse OpenFOAM regression runs
 	$(PY) -m pytest -q

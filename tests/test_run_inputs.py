@@ -11,7 +11,6 @@ import os
 import subprocess
 import sys
 from pathlib import Path
-from types import SimpleNamespace
 
 import pytest
 
@@ -173,12 +172,16 @@ def test_fatal_error_lines_from_a_real_log():
 
 
 def test_decomposition_for_any_rank_count():
-    tank = SimpleNamespace(half_length=6.0, depth=1.2192, air_height=0.45)
+    """A simple split of the tank, never across a direction one cell thick (x of a 2D mesh,
+    y of a wedge), into blocks as near square as the tank allows."""
+    tank = (0.0, 12.0, 1.6692)  # the 2D O-grid tank of cylinder_heave: x, y, z extents
     assert not render.scotch_available()  # Debian's v1912: a stub
     for ranks in (1, 2, 3, 7, 64):
         coeffs = render.decomposition(ranks, tank)["coeffs"]["n"]
         assert coeffs[0] == 1 and coeffs[1] * coeffs[2] == ranks
     assert render.decomposition(64, tank)["coeffs"]["n"] == [1, 16, 4]  # 12 m × 1.67 m
+    assert render.decomposition(2, (6.0, 0.0, 1.67))["coeffs"]["n"] == [2, 1, 1]  # a wedge
+    assert render.decomposition(4, (12.0, 12.0, 1.67))["coeffs"]["n"] == [2, 2, 1]  # 3D
 
 
 def test_write_interval_divides_end_time():
@@ -192,7 +195,9 @@ def test_batch_refuses_bad_input_and_never_overwrites(tmp_path, capsys):
     assert main(["batch", "cylinder_heave", "--levels", "ultrafine", "--out", str(out)]) == 2
     assert main(["batch", "cylinder_heave", "--time", "soon", "--out", str(out)]) == 2
     assert not out.exists()
-    assert main(["batch", "sphere", "--out", str(out)]) == 2  # no [run] end_time
+    # no run.end_time, and no period to set it from: the released roll capsizes
+    assert main(["batch", "parabolic_cylinder", "--set", "release.heave=0", "--out",
+                 str(out)]) == 2
     assert main(["batch", "cylinder_heave", "--levels", "coarse", "medium", "fine",
                  "--np", "2", "--out", str(out)]) == 0
     text = out.read_text()

@@ -24,7 +24,7 @@ from procutil import locked, processes_in
 
 from floatfoam.case import load_case
 from floatfoam.cli import main
-from floatfoam.foam import render, runner, timedirs
+from floatfoam.foam import domain, render, runner, timedirs
 from floatfoam.hydrostatics.theory import equilibrium
 from floatfoam.layout import is_finished
 from floatfoam.motion import read_motion
@@ -165,8 +165,8 @@ def test_odd_rank_count_decomposes(tmp_path):
     (real) makes three processor meshes; no solver runs."""
     case = load_case(CASE)
     state = render.release_state(case, equilibrium(case))
-    grid = render.ogrid_for(case, "coarse", state)
-    render.render(case, "coarse", tmp_path, state, grid, np_=3)
+    mesh = domain.plan(case, "coarse", state["pose"])
+    render.render(case, "coarse", tmp_path, state, mesh, np_=3)
     runner.run_app(tmp_path, "blockMesh", ["blockMesh"], quiet=True, marker=False)
     shutil.copytree(tmp_path / "0.orig", tmp_path / "0")
     runner.run_app(tmp_path, "decomposePar", ["decomposePar"], quiet=True, marker=False)

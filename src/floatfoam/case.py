@@ -1,6 +1,8 @@
 """Case files: ``cases/<name>/case.toml`` holds every number of a case.
 
-Tables: [case] (title, description), [body] (shape and dimensions), [mass] (mass or density,
+Tables: [case] (title, description, and ``extends``: the name of a case this one takes every
+table from, overriding only what it sets — a roll release of a body whose heave case exists),
+[body] (shape and dimensions), [mass] (mass or density,
 centre of gravity, radii of gyration), [fluid], [release], optional [reference], and the tables
 later stages read ([domain], [mesh], [run], [potential]). Any value can be overridden with
 ``--set table.key=value`` (a TOML value; repeatable).
@@ -40,7 +42,7 @@ OPTIONAL_BODY = {"box": ("bilge_radius",), "implicit": ("resolution",), "stl": (
 # Keys a case file (or --set) may hold, table by table (the stages' tables from their typed
 # settings, floatfoam.settings). None: free-form table.
 SCHEMA = {
-    "case": {"title", "description"},
+    "case": {"title", "description", "extends"},
     "body": {"shape", *{k for keys in SHAPES.values() for k in keys},
              *{k for keys in OPTIONAL_BODY.values() for k in keys}},
     "mass": {"mass", "density", "cog", "gyradius"},
@@ -105,18 +107,47 @@ def case_dir(name_or_path: str) -> Path:
 def load_case(name_or_path: str, overrides=()) -> Case:
     """Read ``case.toml``, apply ``overrides`` ("table.key=value") and validate."""
     folder = case_dir(name_or_path)
-    with open(folder / "case.toml", "rb") as fh:
-        try:
-            raw = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as err:
-            raise InputError(f"{folder / 'case.toml'}: not valid TOML ({err})") from None
-    _check_tables(raw)
+    raw = _read_toml(folder, [])
     for item in overrides:
         apply_override(raw, item)
     merged = copy.deepcopy(DEFAULTS)
     for table, values in raw.items():
         merged.setdefault(table, {}).update(values)
     return _build(folder, merged)
+
+
+def _read_toml(folder: Path, seen: list[Path]) -> dict:
+    """The case file of ``folder``, with the tables of the case it ``extends`` beneath it
+    (table by table: a key it sets replaces the base's)."""
+    if folder in seen:
+        chain = " → ".join(p.name for p in [*seen, folder])
+        raise InputError(f"case.extends: the cases extend one another in a loop ({chain}); "
+                         "valid is a chain ending in a case without extends")
+    with open(folder / "case.toml", "rb") as fh:
+        try:
+            raw = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as err:
+            raise InputError(f"{folder / 'case.toml'}: not valid TOML ({err})") from None
+    base_name = raw.get("case", {}).get("extends")
+    _check_tables(raw, complete=base_name is None)
+    if base_name is None:
+        return raw
+    if not isinstance(base_name, str):
+        raise InputError(f"case.extends = {base_name!r} in {folder / 'case.toml'}: valid is the "
+                         "name of another case (a string)")
+    merged = _read_toml(case_dir(base_name), [*seen, folder])
+    merged.get("case", {}).pop("extends", None)
+    for table, values in raw.items():
+        if isinstance(values, dict):
+            target = merged.setdefault(table, {})
+            for key, value in values.items():
+                if isinstance(value, dict) and isinstance(target.get(key), dict):
+                    target[key] = {**target[key], **value}  # [mesh.gmsh] and the like
+                else:
+                    target[key] = value
+        else:
+            merged[table] = values
+    return merged
 
 
 def apply_override(raw: dict, item: str) -> None:
@@ -149,7 +180,8 @@ def apply_override(raw: dict, item: str) -> None:
     target[leaf] = value
 
 
-def _check_tables(raw: dict) -> None:
+def _check_tables(raw: dict, complete: bool = True) -> None:
+    """Known tables and keys; with ``complete``, [body] and [mass] present."""
     for table, values in raw.items():
         if table not in SCHEMA:
             near = difflib.get_close_matches(table, list(SCHEMA), n=1)
@@ -163,7 +195,7 @@ def _check_tables(raw: dict) -> None:
             for key in values:
                 if key not in allowed:
                     raise settings.unknown_key(table, key, allowed)
-    for table in ("body", "mass"):
+    for table in ("body", "mass") if complete else ():
         if table not in raw:
             raise InputError(f"the case has no [{table}] table; valid is a case.toml with "
                              "[body] (shape and dimensions) and [mass] (mass or density, cog, "

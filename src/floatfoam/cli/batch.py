@@ -55,10 +55,11 @@ def run(args) -> int:
     if out.exists():
         raise InputError(f"--out {out}: the file exists; valid is a new file (nothing is "
                          "overwritten)")
+    from floatfoam.foam.render import end_time_of
+
     cases = [load_case(name, args.overrides) for name in args.cases]  # each checked now
     for case in cases:
-        if case.settings.run.end_time is None:
-            raise InputError(f"run.end_time of {case.name} is missing; the CFD run needs it")
+        end_time_of(case)  # run.end_time, or the theory's periods to set it from
     tasks = [(str(case.path), level) for case in cases for level in args.levels]
     out.write_text(script(tasks, args))
     out.chmod(0o755)

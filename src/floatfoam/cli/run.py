@@ -67,26 +67,48 @@ def _say(line: str) -> None:
 
 
 def print_summary(case, result, eq) -> None:
-    """The motion series and its heave period beside the theory's."""
-    from floatfoam.analysis.decay import analyse_decay
+    """The motion series of each DoF the release displaces, its period and damping ratio
+    beside the theory's period (a DoF the release leaves alone is not analysed: its record is
+    noise)."""
+    from floatfoam.dofs import released
     from floatfoam.hydrostatics.theory import theory_summary
-    from floatfoam.motion import dof_series, read_motion
+    from floatfoam.motion import read_motion
 
     theory = theory_summary(case, eq)
     if not result.motion_csv.exists():  # a body held still (run.static_body) has no motion
         print(f"no motion series (the body is held still); run: {result.run_dir}")
         return
     print(f"motion series: {result.motion_csv}")
-    t, z = dof_series(read_motion(result.motion_csv), "heave")
-    print(f"{'time (s)':>9} {'z of G (m)':>12}")
+    motion = read_motion(result.motion_csv)
+    dofs = released(case.release) or released({"heave": 1.0})
+    columns = [(d, d.column) for d in dofs]
+    t = motion["time"]
+    header = f"{'time (s)':>9}" + "".join(f" {f'{d.name} ({d.unit})':>14}" for d, _ in columns)
+    print(header)
     for i in range(0, len(t), max(1, len(t) // 12)):
-        print(f"{t[i]:>9.3f} {z[i]:>12.6f}")
-    memoir = theory.memoir.get("heave_period")
-    print(f"theory heave period (no added mass): {theory.period('heave'):.4f} s"
-          + (f"; memoir: {memoir:.4f} s" if memoir else ""))
+        print(f"{t[i]:>9.3f}" + "".join(f" {motion[c][i]:>14.6g}" for _, c in columns))
+    for d, _ in columns:
+        _dof_summary(d, motion, theory)
+
+
+def _dof_summary(d, motion, theory) -> None:
+    """Theory period and the CFD's damped period and damping ratio of one DoF."""
+    from floatfoam.analysis.decay import analyse_decay
+    from floatfoam.motion import dof_series
+
+    period = theory.period(d.name)
+    memoir = theory.memoir.get(f"{d.name}_period")
+    what = "no added mass" if d.name == "heave" else "no added inertia"
+    entry = theory.dofs.get(d.name)
+    if entry is not None and entry.verdict not in (None, "oscillates"):
+        print(f"theory {d.name}: {entry.verdict} (GM {entry.metacentric_height:.4g} m)")
+    elif period:
+        print(f"theory {d.name} period ({what}): {period:.4f} s"
+              + (f"; memoir: {memoir:.4f} s" if memoir else ""))
+    t, x = dof_series(motion, d.name)
     try:
-        decay = analyse_decay(t, z).summary()
-        print(f"CFD damped heave period: {decay['period_mean']:.4f} s, damping ratio "
+        decay = analyse_decay(t, x, units=(d.file_scale, d.unit), name=d.column).summary()
+        print(f"CFD damped {d.name} period: {decay['period_mean']:.4f} s, damping ratio "
               f"{decay['damping_ratio']:.3f} over {decay['n_cycles']:.1f} cycles")
     except InputError as err:
-        print(f"CFD decay analysis: {err}")
+        print(f"CFD {d.name} decay analysis: {err}")

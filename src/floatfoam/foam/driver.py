@@ -3,7 +3,12 @@
 Steps (each leaves a marker in ``<run>/.floatfoam/``, so an interrupted run resumes where it
 stopped; the solver restarts from its last written time):
 
-    render → blockMesh → fields → setAlphaField → [decomposePar] → interFoam → finished
+    render → gmshToFoam, patchTypes, checkMesh (or blockMesh) → fields → setAlphaField →
+    [decomposePar] → interFoam → finished
+
+A gmsh mesh (:mod:`floatfoam.foam.domain`) is generated before the run directory is touched, in
+a scratch folder, so that a mesh too large for this machine is refused before anything is
+written.
 """
 
 from __future__ import annotations
@@ -13,15 +18,16 @@ import json
 import os
 import shutil
 import sys
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 from floatfoam import layout
 from floatfoam.case import Case
 from floatfoam.errors import InputError
-from floatfoam.foam import runner
+from floatfoam.foam import domain, runner
 from floatfoam.foam.motionlog import rebuild_motion
-from floatfoam.foam.render import ogrid_for, release_state, render
+from floatfoam.foam.render import end_time_of, release_state, render
 from floatfoam.foam.runlock import RunLock, lock_path
 from floatfoam.foam.timedirs import latest_time, set_aside_incomplete
 from floatfoam.hydrostatics.theory import Equilibrium
@@ -93,59 +99,94 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     mpirun. Everything is checked before anything is written; the run holds the run
     directory's lock (:mod:`floatfoam.foam.runlock`) from start to end."""
     check_ranks(np_, hostfile)
-    solver = solver_path(case)
+    solver_path(case)  # refused before anything is done when missing
     if equilibrium is None:
         from floatfoam.hydrostatics.theory import equilibrium as solve
 
         equilibrium = solve(case)
     state = release_state(case, equilibrium)
-    grid = ogrid_for(case, level, state, local=hostfile is None)  # bad input fails here
+    local = hostfile is None
+    mesh = domain.plan(case, level, state["pose"], local=local)  # bad input fails here
+    end_time_of(case)
     label = f"{case.name}/{level}"
-    runner.check_path(layout.run_dir(case.name, level, build_dir))
-    with RunLock(lock_path(case.name, level, build_dir), label) as lock:
-        if lock.stale_holder():
-            print(f"[{label}] the run of PID {lock.stale_holder()} ended without finishing; "
-                  "this run takes its place", file=sys.stderr)
-        run_dir, resumed, finished = prepare(case, level, np_, force, build_dir)
-        motion = run_dir / "motion.csv"
-        info_file = run_dir / layout.MARKERS / "info.json"
-        if finished:
-            return RunResult(run_dir, motion, json.loads(info_file.read_text()), False, True)
-        if not layout.step_done(run_dir, "render"):
-            info = render(case, level, run_dir, state, grid, np_=np_)
-            info = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in info.items()}
-            info_file.write_text(json.dumps(info, indent=2))
-            layout.mark_done(run_dir, "render")
-        info = json.loads(info_file.read_text())
-        if resumed:
-            print(f"[{label}] resuming the run in {run_dir}")
-            for moved in set_aside_incomplete(run_dir, moving=not case.settings.run.static_body):
-                print(f"[{label}] an incomplete time folder (a write cut short) is set aside: "
-                      f"{moved}", file=sys.stderr)
-        runner.run_app(run_dir, "blockMesh", ["blockMesh"])
-        if not layout.step_done(run_dir, "fields"):
-            shutil.rmtree(run_dir / "0", ignore_errors=True)
-            shutil.copytree(run_dir / "0.orig", run_dir / "0")
-            layout.mark_done(run_dir, "fields")
-        runner.run_app(run_dir, "setAlphaField", ["setAlphaField"])
-        if np_ > 1:
-            runner.run_app(run_dir, "decomposePar", ["decomposePar", "-force"])
-        print(f"[{label}] {info['cells']} cells, {np_} rank(s), {info['end_time']:g} s to "
-              f"simulate; log: {run_dir / 'log.interFoam'}")
-        limits = runner.Limits(max_courant=case.settings.run.divergence_courant,
-                               max_body_speed=case.settings.run.divergence_body_speed)
-        reached = latest_time(run_dir) if resumed else None
-        if reached is not None and reached >= info["end_time"] * (1 - 1e-9):
-            # the solver wrote end_time, and its driver stopped before saying so
-            print(f"[{label}] the solver had reached end_time ({reached:g} s); the motion "
-                  "series is rebuilt from its log", file=sys.stderr)
-            rebuild_motion(run_dir / "log.interFoam", motion)
-        else:
-            runner.run_solver(run_dir, [str(solver)], end_time=info["end_time"], np_=np_,
-                              hostfile=hostfile, motion_csv=motion, limits=limits,
-                              label=label, log_name="interFoam", keep_fds=(lock.fd,))
-        layout.mark_done(run_dir, layout.FINISHED)
-        return RunResult(run_dir, motion, info, resumed)
+    target = layout.run_dir(case.name, level, build_dir)
+    runner.check_path(target)
+    with tempfile.TemporaryDirectory(prefix="floatfoam-mesh-") as scratch:
+        if mesh.mesher == "gmsh" and (force or not layout.step_done(target, "render")):
+            print(f"[{label}] gmsh: meshing the {mesh.kind} domain", file=sys.stderr)
+            mesh = domain.generate(mesh, case, level, equilibrium, Path(scratch), local=local)
+        with RunLock(lock_path(case.name, level, build_dir), label) as lock:
+            if lock.stale_holder():
+                print(f"[{label}] the run of PID {lock.stale_holder()} ended without "
+                      "finishing; this run takes its place", file=sys.stderr)
+            return _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh,
+                               lock, label)
+
+
+def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
+                label) -> RunResult:
+    """The steps of :func:`run_case`, under the run directory's lock."""
+    run_dir, resumed, finished = prepare(case, level, np_, force, build_dir)
+    motion = run_dir / "motion.csv"
+    info_file = run_dir / layout.MARKERS / "info.json"
+    if finished:
+        return RunResult(run_dir, motion, json.loads(info_file.read_text()), False, True)
+    if not layout.step_done(run_dir, "render"):
+        info = render(case, level, run_dir, state, mesh, np_=np_)
+        info = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in info.items()}
+        info_file.write_text(json.dumps(info, indent=2))
+        layout.mark_done(run_dir, "render")
+    info = json.loads(info_file.read_text())
+    if resumed:
+        print(f"[{label}] resuming the run in {run_dir}")
+        for moved in set_aside_incomplete(run_dir, moving=not case.settings.run.static_body):
+            print(f"[{label}] an incomplete time folder (a write cut short) is set aside: "
+                  f"{moved}", file=sys.stderr)
+    check = domain.make_polymesh(mesh, run_dir)
+    if check is not None:
+        print(mesh_line(label, info, check), file=sys.stderr)
+    if not layout.step_done(run_dir, "fields"):
+        shutil.rmtree(run_dir / "0", ignore_errors=True)
+        shutil.copytree(run_dir / "0.orig", run_dir / "0")
+        layout.mark_done(run_dir, "fields")
+    runner.run_app(run_dir, "setAlphaField", ["setAlphaField"])
+    if np_ > 1:
+        runner.run_app(run_dir, "decomposePar", ["decomposePar", "-force"])
+    print(f"[{label}] {info['cells']} cells, {np_} rank(s), {info['end_time']:g} s to "
+          f"simulate; log: {run_dir / 'log.interFoam'}")
+    limits = runner.Limits(max_courant=case.settings.run.divergence_courant,
+                           max_body_speed=case.settings.run.divergence_body_speed,
+                           min_delta_t=STALL_FRACTION * case.settings.run.max_delta_t
+                           / domain.level_factor(case, level))
+    reference = info.get("equilibrium_orientation")
+    reached = latest_time(run_dir) if resumed else None
+    if reached is not None and reached >= info["end_time"] * (1 - 1e-9):
+        # the solver wrote end_time, and its driver stopped before saying so
+        print(f"[{label}] the solver had reached end_time ({reached:g} s); the motion "
+              "series is rebuilt from its log", file=sys.stderr)
+        rebuild_motion(run_dir / "log.interFoam", motion, reference)
+    else:
+        runner.run_solver(run_dir, [str(solver_path(case))], end_time=info["end_time"],
+                          np_=np_, hostfile=hostfile, motion_csv=motion, limits=limits,
+                          label=label, log_name="interFoam", keep_fds=(lock.fd,),
+                          reference=reference)
+    layout.mark_done(run_dir, layout.FINISHED)
+    return RunResult(run_dir, motion, info, resumed)
+
+
+STALL_FRACTION = 0.01  # of the level's largest time step: below it, the mesh is giving out
+
+
+def mesh_line(label: str, info: dict, check: dict) -> str:
+    """One line on a gmsh mesh: cells, checkMesh's verdict and worst angle, the body patch's
+    immersed volume against the exact body's."""
+    verdict = "OK" if check.get("mesh_ok") else "reports problems (see log.checkMesh)"
+    line = (f"[{label}] {info['mesh']} mesh: {check.get('cells') or info['cells']} cells; "
+            f"checkMesh {verdict}, max non-orthogonality "
+            f"{check.get('max_non_orthogonality') or 0:.0f}°")
+    if info.get("immersed_error") is not None:
+        line += f"; body patch immersed volume {info['immersed_error']:+.2e} of the exact body's"
+    return line
 
 
 def check_ranks(np_: int, hostfile: Path | None) -> None:

@@ -45,11 +45,15 @@ class Step:
     velocity: np.ndarray | None = None
     angular_velocity: np.ndarray | None = None  # rad/s
 
-    def motion_row(self) -> list[float] | None:
-        """time, x, y, z, roll, pitch, yaw (deg), u, v, w (m/s), p, q, r (deg/s)."""
+    def motion_row(self, reference: np.ndarray | None = None) -> list[float] | None:
+        """time, x, y, z, roll, pitch, yaw (deg), u, v, w (m/s), p, q, r (deg/s); the angles
+        are those of the attitude from ``reference`` (the equilibrium attitude's rotation
+        tensor; default upright), Q·referenceᵀ."""
         if self.centre_of_mass is None or self.orientation is None:
             return None
-        roll, pitch, yaw = euler_angles(self.orientation)
+        q = self.orientation if reference is None else self.orientation @ np.asarray(
+            reference, dtype=float).T
+        roll, pitch, yaw = euler_angles(q)
         vel = self.velocity if self.velocity is not None else np.zeros(3)
         omega = self.angular_velocity if self.angular_velocity is not None else np.zeros(3)
         return [self.time, *self.centre_of_mass, *np.degrees([roll, pitch, yaw]), *vel,

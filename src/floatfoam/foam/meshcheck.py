@@ -3,7 +3,8 @@
 Light applications only (no solver): they run in a scratch case with the minimal system/
 files they read, rendered with foamlib. gmshToFoam names the patches after the physical groups
 and makes them all ``patch``; :func:`set_patch_types` gives them their OpenFOAM types
-(:data:`PATCH_TYPES`), which checkMesh needs to see a 2D or wedge mesh as such.
+(:data:`floatfoam.foam.patches.PATCH_TYPES`), which checkMesh needs to see a 2D or wedge mesh
+as such.
 """
 
 from __future__ import annotations
@@ -12,17 +13,8 @@ import re
 from pathlib import Path
 
 from floatfoam.foam.dictionaries import write_dict
+from floatfoam.foam.patches import PATCH_TYPES
 from floatfoam.foam.runner import check_path, run_app
-
-PATCH_TYPES = {  # physical group → OpenFOAM patch type
-    "body": "wall",
-    "bottom": "wall",
-    "sides": "wall",
-    "atmosphere": "patch",
-    "frontAndBack": "empty",
-    "wedge0": "wedge",
-    "wedge1": "wedge",
-}
 
 _SYSTEM = {
     "controlDict": {"application": "checkMesh", "startFrom": "startTime", "startTime": 0,

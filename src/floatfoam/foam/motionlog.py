@@ -23,12 +23,13 @@ class MotionWriter:
     """Append motion rows to a CSV as the solver goes (header written once). On resume,
     rows at or after the restart time replace the ones of the interrupted run."""
 
-    def __init__(self, path: Path):
+    def __init__(self, path: Path, reference=None):
         self.path = Path(path)
+        self.reference = reference  # the equilibrium attitude: angles are measured from it
         self.last_time = -math.inf
 
     def append(self, steps: list[Step]) -> None:
-        rows = [r for r in (s.motion_row() for s in steps) if r is not None]
+        rows = [r for r in (s.motion_row(self.reference) for s in steps) if r is not None]
         if not rows:
             return
         if self.last_time == -math.inf:  # the first rows of this solver run
@@ -56,14 +57,15 @@ class MotionWriter:
         os.replace(fresh, self.path)
 
 
-def rebuild_motion(log: Path, csv: Path) -> None:
+def rebuild_motion(log: Path, csv: Path, reference=None) -> None:
     """Write ``csv`` anew from the whole solver log, resumed parts included (for a run whose
-    driver stopped after the solver's last step but before recording it)."""
+    driver stopped after the solver's last step but before recording it); angles from the
+    attitude ``reference``."""
     fresh = csv.with_name(csv.name + ".rebuilt")
     fresh.unlink(missing_ok=True)
     for part in Path(log).read_text(errors="replace").split(RESUMED):
         watcher = LogWatcher()
         steps = watcher.feed(part) + watcher.close()
-        MotionWriter(fresh).append(steps)
+        MotionWriter(fresh, reference).append(steps)
     if fresh.exists():
         os.replace(fresh, csv)

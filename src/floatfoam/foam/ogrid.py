@@ -61,8 +61,8 @@ def expansion_ratio(length: float, first: float, cells: int) -> float:
 def block_mesh_dict(g: OGrid) -> dict:
     """The blockMeshDict entries (vertices, blocks, edges, boundary) of the O-grid tank.
 
-    Patches: ``body`` (wall), ``walls`` (tank sides and bottom), ``atmosphere`` (top),
-    ``frontBack`` (empty).
+    Patches (:mod:`floatfoam.foam.patches`): ``body``, ``bottom``, ``sides`` (the tank's
+    ends), ``atmosphere`` (top), ``frontAndBack`` (empty).
     """
     a, zc, b, t = g.radius, g.centre_z, g.square, g.thickness
     if not a < b < min(g.half_length, g.depth + zc, g.air_height - zc):
@@ -121,10 +121,11 @@ def block_mesh_dict(g: OGrid) -> dict:
         "edges": edges,
         "boundary": [
             ("body", {"type": "wall", "faces": body}),
-            ("walls", {"type": "wall", "faces": left + right + bottom}),
+            ("bottom", {"type": "wall", "faces": bottom}),
+            ("sides", {"type": "wall", "faces": left + right}),
             ("atmosphere", {"type": "patch", "faces": top}),
         ],
-        "defaultPatch": {"name": "frontBack", "type": "empty"},
+        "defaultPatch": {"name": "frontAndBack", "type": "empty"},
     }
 
 

@@ -1,8 +1,9 @@
 """Render an OpenFOAM run directory ``build/<case>/<level>/`` from a case.
 
 The shared dictionaries of ``cases/_common/`` are copied, then every case-specific value is
-set with foamlib from the case file ([fluid], [domain], [mesh], [run]) and the theory
-(equilibrium, mass properties). Templates are never run in place.
+set with foamlib from the case file ([fluid], [run]), the run's mesh (:mod:`floatfoam.foam.
+domain`: its source, patches, share of the body) and the theory (equilibrium, mass
+properties). Templates are never run in place.
 """
 
 from __future__ import annotations
@@ -15,87 +16,31 @@ import numpy as np
 from foamlib import FoamFile
 
 from floatfoam.bodies.geometry import rotation
-from floatfoam.bodies.shapes import EllipticCylinder
 from floatfoam.case import Case
 from floatfoam.errors import InputError
-from floatfoam.foam.dictionaries import write_dict, write_field
-from floatfoam.foam.ogrid import OGrid, block_mesh_dict
+from floatfoam.foam import domain
+from floatfoam.foam.dictionaries import write_dict
+from floatfoam.foam.domain import RunMesh
+from floatfoam.foam.patches import write_initial_fields
 from floatfoam.hydrostatics.theory import Equilibrium
 from floatfoam.layout import COMMON_DIR
-from floatfoam.meshing.levels import level_index, refinement_ratio
-from floatfoam.settings import max_cells, memory_text
-
-
-def required(value, name: str):
-    """A setting the CFD case cannot do without: an InputError naming it when absent."""
-    if value is None:
-        raise InputError(f"{name} is missing; the CFD case needs it")
-    return value
-
-
-def level_factor(case: Case, level: str) -> float:
-    """Cell-count multiplier of a mesh level: r⁰, r¹, r² for coarse, medium, fine."""
-    return refinement_ratio(case) ** level_index(level)
+from floatfoam.meshing.levels import pose
 
 
 def release_state(case: Case, eq: Equilibrium) -> dict:
-    """Body centre and centre of mass (earth frame) at release, and the equilibrium z of G,
-    from the case's equilibrium ``eq``."""
-    heel = math.radians(case.release["heel"])
-    trim = math.radians(case.release["trim"])
-    centre_z = eq.z_c + case.release["heave"]
-    cog = rotation(heel, trim) @ case.cog + np.array([0.0, 0.0, centre_z])
-    g_eq = rotation(eq.heel, eq.trim) @ case.cog + np.array([0.0, 0.0, eq.z_c])
-    return {"centre_z": centre_z, "cog": cog, "z_G_equilibrium": float(g_eq[2]),
-            "heel": heel, "trim": trim}
-
-
-def ogrid_for(case: Case, level: str, state: dict, *, local: bool = True) -> OGrid:
-    """The O-grid of a circular section at ``level``, the body at its release ``state``;
-    ``local``: the run is on this machine, whose memory bounds the cells."""
-    body = case.body
-    if not (isinstance(body, EllipticCylinder) and body.b == body.c):
-        raise InputError(f"body.shape of case {case.name!r}: the CFD mesh is available for "
-                         "circular_cylinder only so far")
-    mesh, domain = case.settings.mesh, case.settings.domain
-    depth = case.depth if math.isfinite(case.depth) else required(domain.depth, "domain.depth")
-    grid = OGrid(
-        radius=body.b, centre_z=state["centre_z"],
-        half_length=required(domain.half_length, "domain.half_length"), depth=depth,
-        air_height=required(domain.air_height, "domain.air_height"),
-        thickness=required(domain.thickness, "domain.thickness"),
-        square=required(mesh.square_half_size, "mesh.square_half_size"),
-        cells_side=mesh.cells_side, cells_radial=mesh.cells_radial,
-        radial_grading=mesh.radial_grading, cells_horizontal=mesh.cells_horizontal,
-        cells_below=mesh.cells_below, cells_above=mesh.cells_above,
-        factor=level_factor(case, level),
-    )
-    b, zc = grid.square, grid.centre_z
-    if not body.b < b < min(grid.half_length, grid.depth + zc, grid.air_height - zc):
-        raise InputError(f"mesh.square_half_size = {b:g}: valid is between the radius "
-                         f"{body.b:g} and the distance from the body to the tank's ends, bottom "
-                         "and top")
-    if local and grid.cell_count() > max_cells():
-        raise InputError(f"[mesh] cell counts at the {level} level give "
-                         f"{memory_text(grid.cell_count())}: valid is at most "
-                         f"{max_cells():,} cells on this machine (lower mesh.cells_* or "
-                         "mesh.refinement_ratio, or run on others with --hostfile)")
-    inner, outer = motion_distances(case, grid)
-    if not inner < outer:
-        raise InputError(f"run.inner_distance = {inner:g} ≥ run.outer_distance = {outer:g} "
-                         "(one of them defaulted from mesh.square_half_size): valid is "
-                         "inner_distance < outer_distance")
-    required(case.settings.run.end_time, "run.end_time")
-    return grid
-
-
-def motion_distances(case: Case, grid: OGrid) -> tuple[float, float]:
-    """The six-DoF morphing distances: [run] inner and outer, else 0.3 and 1.6 × the O-grid's
-    half-square (rigid inside the inner one, fixed beyond the outer one)."""
-    run = case.settings.run
-    inner = run.inner_distance if run.inner_distance is not None else 0.3 * grid.square
-    outer = run.outer_distance if run.outer_distance is not None else 1.6 * grid.square
-    return inner, outer
+    """The body at release, from the case's equilibrium ``eq``: its pose (the equilibrium
+    attitude plus the [release] offsets, :func:`floatfoam.meshing.levels.pose`), the centre of
+    mass there (earth frame), its attitude as a rotation tensor, and the equilibrium's z of G
+    and attitude (the reference of the motion series' angles)."""
+    where = pose(case, "release", eq)
+    attitude = rotation(where.heel, where.trim)
+    cog = attitude @ case.cog + np.array([0.0, 0.0, where.z_c])
+    reference = rotation(eq.heel, eq.trim)
+    g_eq = reference @ case.cog + np.array([0.0, 0.0, eq.z_c])
+    return {"pose": where, "centre_z": where.z_c, "cog": cog, "orientation": attitude,
+            "z_G_equilibrium": float(g_eq[2]), "equilibrium_orientation": reference,
+            "heel": math.radians(case.release["heel"]),
+            "trim": math.radians(case.release["trim"])}
 
 
 SCOTCH = Path("/usr/lib/libscotchDecomp.so")
@@ -111,15 +56,26 @@ def scotch_available(library: Path = SCOTCH) -> bool:
         return False
 
 
-def decomposition(np_: int, grid: OGrid) -> dict:
+def decomposition(np_: int, extents) -> dict:
     """decomposeParDict entries for ``np_`` ranks: scotch where OpenFOAM has it, else a simple
-    split of the (y, z) tank into a × b blocks, a·b = np_, as near square as the tank allows."""
+    split n = (a, b, c), a·b·c = np_, of the tank's ``extents`` (x, y, z; 0 along a direction
+    one cell thick, never split), its blocks as near cubic as the tank allows."""
     if scotch_available():
         return {"method": "scotch"}
-    width, height = 2.0 * grid.half_length, grid.depth + grid.air_height
-    splits = [(a, np_ // a) for a in range(1, np_ + 1) if np_ % a == 0]
-    a, b = min(splits, key=lambda s: abs(math.log((width / s[0]) / (height / s[1]))))
-    return {"method": "simple", "coeffs": {"n": [1, a, b], "delta": 0.001}}
+    sizes = [float(e) for e in extents]
+    best, best_cost = [1, 1, 1], math.inf
+    for a in range(1, np_ + 1):
+        for b in range(1, np_ // a + 1):
+            if np_ % (a * b):
+                continue
+            split = [a, b, np_ // (a * b)]
+            if any(n > 1 and size <= 0.0 for n, size in zip(split, sizes, strict=True)):
+                continue
+            blocks = [size / n for n, size in zip(split, sizes, strict=True) if size > 0.0]
+            cost = max(blocks) / min(blocks)
+            if cost < best_cost - 1e-12:
+                best, best_cost = split, cost
+    return {"method": "simple", "coeffs": {"n": best, "delta": 0.001}}
 
 
 def write_interval(end_time: float, requested: float) -> float:
@@ -128,37 +84,65 @@ def write_interval(end_time: float, requested: float) -> float:
     return end_time / math.ceil(end_time / requested - 1e-9)
 
 
-def render(case: Case, level: str, run_dir: Path, state: dict, grid: OGrid, *,
+def render(case: Case, level: str, run_dir: Path, state: dict, mesh: RunMesh, *,
            np_: int = 1) -> dict:
-    """Write the run directory for the release ``state`` (:func:`release_state`) on ``grid``
-    (:func:`ogrid_for`); returns what the driver needs (end time, cells, state)."""
+    """Write the run directory for the release ``state`` (:func:`release_state`) on ``mesh``
+    (:mod:`floatfoam.foam.domain`); returns what the driver needs (end time, cells, state)."""
     run_dir.mkdir(parents=True, exist_ok=True)
     for sub in ("system", "constant"):
         shutil.copytree(COMMON_DIR / sub, run_dir / sub, dirs_exist_ok=True)
-    write_dict(run_dir / "system" / "blockMeshDict", block_mesh_dict(grid))
-    end_time = required(case.settings.run.end_time, "run.end_time")
-    _control(case, run_dir, grid, end_time)
+    domain.write(mesh, run_dir)
+    end_time = end_time_of(case)
+    _control(case, run_dir, mesh, end_time)
     _fluid(case, run_dir)
-    _motion(case, run_dir, grid, state)
-    _fields(run_dir / "0.orig")
+    _motion(case, run_dir, mesh, state)
+    write_initial_fields(run_dir / "0.orig", mesh.patches)
     write_dict(run_dir / "system" / "setAlphaFieldDict",
                 {"field": "alpha.water", "type": "plane", "origin": [0.0, 0.0, 0.0],
                  "direction": [0.0, 0.0, 1.0]})
     decompose = FoamFile(run_dir / "system" / "decomposeParDict")
     decompose["numberOfSubdomains"] = np_
-    for key, value in decomposition(np_, grid).items():
+    for key, value in decomposition(np_, mesh.extents).items():
         decompose[key] = value
-    return {"end_time": end_time, "cells": grid.cell_count(), **state}
+    return {"end_time": end_time, "cells": mesh.cells, "mesh": mesh.kind,
+            "immersed_error": mesh.immersed_error,
+            **{k: v for k, v in state.items() if k != "pose"}}
 
 
-def _control(case: Case, run_dir: Path, grid: OGrid, end_time: float) -> None:
+# Added mass lengthens the theory's periods (which have none): measured with Cummins' model
+# (`floatfoam decay-model --model cummins`) up to +43 % in heave (the flat elliptic section,
+# 0.80 s against 0.56 s) and +11 % in roll (the same section, 0.868 s against 0.785 s).
+PERIOD_ALLOWANCE = {"heave": 1.5, "roll": 1.15, "pitch": 1.15}
+DEFAULT_PERIODS = 5
+
+
+def end_time_of(case: Case) -> float:
+    """``run.end_time``, else :data:`DEFAULT_PERIODS` periods of the slowest released DoF:
+    the theory's period × :data:`PERIOD_ALLOWANCE` for the added mass."""
+    if case.settings.run.end_time is not None:
+        return case.settings.run.end_time
+    from floatfoam.dofs import released
+    from floatfoam.hydrostatics.theory import theory_summary
+
+    theory = theory_summary(case)
+    periods = [(theory.period(d.name) or math.nan) * PERIOD_ALLOWANCE[d.name]
+               for d in released(case.release) or released({"heave": 1.0})]
+    finite = [p for p in periods if math.isfinite(p) and p > 0.0]
+    if not finite:
+        raise InputError("run.end_time is missing and the theory gives no period of the "
+                         "released DoF to set it from (it capsizes); valid: run.end_time = "
+                         "<simulated seconds>")
+    return round(DEFAULT_PERIODS * max(finite), 2)
+
+
+def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
     control = FoamFile(run_dir / "system" / "controlDict")
     run = case.settings.run
     control["endTime"] = end_time
-    control["writeInterval"] = write_interval(end_time, run.write_interval)
+    control["writeInterval"] = write_interval(end_time, min(run.write_interval, end_time))
     control["maxCo"] = run.max_courant
     control["maxAlphaCo"] = run.max_courant
-    control["maxDeltaT"] = run.max_delta_t / grid.factor
+    control["maxDeltaT"] = run.max_delta_t / mesh.factor
     if run.static_body:
         pimple = FoamFile(run_dir / "system" / "fvSolution")
         pimple["PIMPLE"]["correctPhi"] = False
@@ -178,33 +162,39 @@ def _fluid(case: Case, run_dir: Path) -> None:
                  "value": [0.0, 0.0, -case.g]}, cls="uniformDimensionedVectorField")
 
 
-def _motion(case: Case, run_dir: Path, grid: OGrid, state: dict) -> None:
-    """Six-DoF body: the slab of thickness t carries mass M·t/L and inertia M·t/L·k²."""
-    share = grid.thickness / case.body.length
-    mass = case.mass * share
-    inertia = [mass * k * k for k in case.gyradius]
-    x_mid = grid.thickness / 2.0
-    cog = [x_mid, float(state["cog"][1]), float(state["cog"][2])]
-    if case.release["heel"] == 0.0:  # heave only: slide along z, no rotation
-        constraints = {
-            "heaveOnly": {"sixDoFRigidBodyMotionConstraint": "line", "centreOfRotation": cog,
-                          "direction": [0.0, 0.0, 1.0]},
-            "noRotation": {"sixDoFRigidBodyMotionConstraint": "orientation"},
-        }
-    else:  # 2D section: heave, sway and roll in its plane
-        constraints = {
-            "inPlane": {"sixDoFRigidBodyMotionConstraint": "plane", "centreOfRotation": cog,
-                        "normal": [1.0, 0.0, 0.0]},
-            "rollOnly": {"sixDoFRigidBodyMotionConstraint": "axis", "axis": [1.0, 0.0, 0.0]},
-        }
+def constraints(case: Case, mesh: RunMesh, cog: list[float]) -> dict:
+    """The six-DoF constraints of the motion the release excites: heave alone (a line and a
+    fixed orientation) for a pure heave release and always in a wedge; heave, sway and roll in
+    the (y, z) plane for a heel; heave, surge and pitch in the (x, z) plane for a trim (3D);
+    none when both are released (3D)."""
+    heel, trim = case.release["heel"] != 0.0, case.release["trim"] != 0.0
+    if mesh.kind == "wedge" or not (heel or trim):
+        return {"heaveOnly": {"sixDoFRigidBodyMotionConstraint": "line",
+                              "centreOfRotation": cog, "direction": [0.0, 0.0, 1.0]},
+                "noRotation": {"sixDoFRigidBodyMotionConstraint": "orientation"}}
+    if heel and trim:
+        return {}
+    axis = [1.0, 0.0, 0.0] if heel else [0.0, 1.0, 0.0]
+    return {"inPlane": {"sixDoFRigidBodyMotionConstraint": "plane", "centreOfRotation": cog,
+                        "normal": axis},
+            "oneAxis": {"sixDoFRigidBodyMotionConstraint": "axis", "axis": axis}}
+
+
+def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> None:
+    """Six-DoF body: the domain holds the share s of the body (a slab t/L, a wedge θ/360°),
+    mass s·M and inertia s·M·k² about the body's axes; its initial orientation is its attitude
+    at release, so the reported orientation is the body's attitude (the mesh is made there)."""
     if case.settings.run.static_body:  # body held at its release position (still-water test)
         write_dict(run_dir / "constant" / "dynamicMeshDict", {"dynamicFvMesh": "staticFvMesh"})
         return
-    inner, outer = motion_distances(case, grid)
+    mass = case.mass * mesh.share
+    inertia = [mass * k * k for k in case.gyradius]
+    cog = [mesh.x_mid, float(state["cog"][1]), float(state["cog"][2])]
+    orientation = np.asarray(state["orientation"], dtype=float)
     coeffs = {
         "patches": ["body"],
-        "innerDistance": inner,
-        "outerDistance": outer,
+        "innerDistance": mesh.inner,
+        "outerDistance": mesh.outer,
         "centreOfMass": cog,
         "centreOfRotation": cog,
         "mass": mass,
@@ -212,37 +202,13 @@ def _motion(case: Case, run_dir: Path, grid: OGrid, state: dict) -> None:
         "report": True,
         "accelerationRelaxation": case.settings.run.acceleration_relaxation,
         "solver": {"type": "Newmark"},
-        "constraints": constraints,
+        "constraints": constraints(case, mesh, cog),
     }
+    if not np.allclose(orientation, np.eye(3), atol=1e-15):
+        coeffs["orientation"] = [round(float(v), 15) for v in orientation.ravel()]
     write_dict(run_dir / "constant" / "dynamicMeshDict", {
         "dynamicFvMesh": "dynamicMotionSolverFvMesh",
         "motionSolverLibs": ['"libsixDoFRigidBodyMotion.so"'],
         "motionSolver": "sixDoFRigidBodyMotion",
         "sixDoFRigidBodyMotionCoeffs": coeffs,
     })
-
-
-def _fields(folder: Path) -> None:
-    """Initial fields: water and air at rest; the free surface is set by setAlphaField."""
-    zero = [0.0, 0.0, 0.0]
-    specs = {
-        "U": ("volVectorField", FoamFile.DimensionSet(length=1, time=-1), zero, {
-            "body": {"type": "movingWallVelocity", "value": zero},
-            "walls": {"type": "noSlip"},
-            "atmosphere": {"type": "pressureInletOutletVelocity", "value": zero}}),
-        "p_rgh": ("volScalarField", FoamFile.DimensionSet(mass=1, length=-1, time=-2), 0.0, {
-            "body": {"type": "fixedFluxPressure", "value": 0.0},
-            "walls": {"type": "fixedFluxPressure", "value": 0.0},
-            "atmosphere": {"type": "totalPressure", "p0": 0.0}}),
-        "alpha.water": ("volScalarField", FoamFile.DimensionSet(), 0.0, {
-            "body": {"type": "zeroGradient"}, "walls": {"type": "zeroGradient"},
-            "atmosphere": {"type": "inletOutlet", "inletValue": 0.0, "value": 0.0}}),
-        "pointDisplacement": ("pointVectorField", FoamFile.DimensionSet(length=1), zero, {
-            "body": {"type": "calculated", "value": zero},
-            "walls": {"type": "fixedValue", "value": zero},
-            "atmosphere": {"type": "fixedValue", "value": zero}}),
-    }
-    for name, (cls, dims, internal, patches) in specs.items():
-        write_field(folder / name, cls, dims, internal, {**patches, "frontBack": {"type": "empty"}})
-
-

@@ -22,7 +22,7 @@ import numpy as np
 
 from floatfoam.errors import ComputationError, InputError
 from floatfoam.foam import processes
-from floatfoam.foam.logwatch import LogWatcher, Step, fatal_block
+from floatfoam.foam.logwatch import LogWatcher, Step, euler_angles, fatal_block
 from floatfoam.foam.motionlog import RESUMED, MotionWriter
 from floatfoam.interrupts import SignalInterruptError
 from floatfoam.layout import mark_done, step_done
@@ -45,6 +45,34 @@ class Limits:
 
     max_courant: float = 20.0  # ~40× the usual maxCo 0.5: only a blow-up gets there
     max_body_speed: float = 10.0  # m/s
+    # A morphing mesh that can no longer follow the body squeezes cells until the Courant limit
+    # shrinks the time step ~500× (measured: the capsizing ellipse at 80°, 5 ms → 1e-5 s, after
+    # which it made no progress): 100 steps in a row below this time step stop the run.
+    min_delta_t: float | None = None
+    stall_steps: int = 100
+
+
+class Stall:
+    """Counts consecutive steps below ``Limits.min_delta_t``; says why when they are too many."""
+
+    def __init__(self, limits: Limits):
+        self.limits, self.count = limits, 0
+
+    def check(self, steps: list[Step]) -> str | None:
+        floor = self.limits.min_delta_t
+        if floor is None:
+            return None
+        for s in steps:
+            self.count = self.count + 1 if s.delta_t is not None and s.delta_t < floor else 0
+            if self.count >= self.limits.stall_steps:
+                where = ""
+                if s.orientation is not None:
+                    roll, pitch, _ = (math.degrees(a) for a in euler_angles(s.orientation))
+                    where = f" with the body at roll {roll:.1f}°, pitch {pitch:.1f}°"
+                return (f"the time step collapsed to {s.delta_t:.2g} s at t = {s.time:g} s"
+                        f"{where}: the moving mesh is too deformed to follow the body (larger "
+                        "run.inner_distance and run.outer_distance spread the deformation)")
+        return None
 
 
 def foam_env() -> dict:
@@ -104,12 +132,13 @@ def _mpi(argv: list[str], np_: int, hostfile: Path | None = None) -> list[str]:
 def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                hostfile: Path | None = None, motion_csv: Path | None = None,
                limits: Limits = Limits(), label: str = "", progress_every: float = 10.0,
-               log_name: str | None = None, keep_fds=()) -> list[Step]:
+               log_name: str | None = None, keep_fds=(), reference=None) -> list[Step]:
     """Run the solver, watching its log: progress line, motion CSV, divergence, and the end.
 
     The log of a resumed run is appended to ``log.<solver>`` after a separator, so earlier
     output is never lost. The solver runs in a watched process group (``keep_fds``: the run's
-    lock, held by its watchdog); a :class:`~floatfoam.interrupts.SignalInterruptError`
+    lock, held by its watchdog); the motion's angles are from the attitude ``reference``
+    (rotation tensor; default upright). A :class:`~floatfoam.interrupts.SignalInterruptError`
     stops it and is re-raised with the last time reached (``time``). A run that ends before
     ``end_time`` is an error. Returns the parsed steps of this invocation.
     """
@@ -121,13 +150,14 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
             fh.write(f"\n{RESUMED} at {time.strftime('%Y-%m-%d %H:%M:%S')}\n")
     offset = log.stat().st_size if log.exists() else 0
     watcher = LogWatcher()
-    writer = MotionWriter(motion_csv) if motion_csv else None
+    writer = MotionWriter(motion_csv, reference) if motion_csv else None
     start = time.monotonic()
     with open(log, "a") as fh:
         child = processes.Child(_mpi(argv, np_, hostfile), cwd=run_dir, stdout=fh,
                                 env=foam_env(), keep_fds=keep_fds)
     last_report = -math.inf
     t0 = None
+    stall = Stall(limits)
     try:
         with open(log) as reader:
             reader.seek(offset)
@@ -147,6 +177,9 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                     if problem:
                         raise RunError(f"{label}: diverged at t = {new_steps[-1].time:g} s "
                                        f"({problem}); see {log}")
+                    problem = stall.check(new_steps)
+                    if problem:
+                        raise RunError(f"{label}: stopped: {problem}; see {log}")
                 if watcher.fatal and finished:
                     raise RunError(f"{label}: {name} stopped: {watcher.fatal_message()}; "
                                    f"see {log}")
