@@ -1,9 +1,13 @@
-"""Benchmark: the cylinder_heave CFD run, serial and on 2 MPI ranks.
+"""Benchmark: the CFD cases, serial and on 2 MPI ranks.
 
-Prints and writes build/bench/cfd.json: cells, time steps, wall time, wall time per simulated
-second, for each (level, ranks). Each run goes to build/bench/ and is moved aside when rerun.
+For each case and rank count, a coarse run of ``--end-time`` simulated seconds (default: 1 s,
+enough for the time step to settle; the whole record of a case costs its end time × the
+measured wall time per simulated second): cells, mesh kind, time steps, wall time (render,
+mesh and solver included) and wall time per simulated second. Prints a table and writes
+build/bench/cfd.json. Each run goes to build/bench/ and is moved aside when rerun.
 
-    .venv/bin/python scripts/bench_cfd.py [--levels coarse] [--ranks 1 2] [--end-time 3.2]
+    .venv/bin/python scripts/bench_cfd.py [--cases A B] [--levels coarse] [--ranks 1 2]
+                                          [--end-time 1.0 | --full]
 """
 
 import argparse
@@ -15,41 +19,59 @@ import time
 
 from floatfoam.case import load_case
 from floatfoam.foam.driver import run_case
+from floatfoam.foam.render import end_time_of
 from floatfoam.layout import ROOT, build_dir
+
+CASES = ["cylinder_heave", "elliptic_cylinder", "elliptic_cylinder_roll",
+         "elliptic_cylinder_capsize", "parabolic_cylinder", "hyperbolic_cylinder", "box_bilge",
+         "box_bilge_heave", "sphere", "sphere_25mm", "sphere_50mm", "ellipsoid_roll"]
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--cases", nargs="+", default=CASES)
     parser.add_argument("--levels", nargs="+", default=["coarse"])
     parser.add_argument("--ranks", nargs="+", type=int, default=[1, 2])
-    parser.add_argument("--end-time", type=float, default=3.2)
+    parser.add_argument("--end-time", type=float, default=1.0)
+    parser.add_argument("--full", action="store_true", help="each case's whole record")
     args = parser.parse_args()
     rows = []
-    for level in args.levels:
-        for ranks in args.ranks:
-            case = load_case("cylinder_heave", [f"run.end_time={args.end_time}"])
-            build = build_dir() / "bench" / f"np{ranks}"
-            t0 = time.perf_counter()
-            result = run_case(case, level, ranks, force=True, build_dir=build)
-            wall = time.perf_counter() - t0
-            log = (result.run_dir / "log.interFoam").read_text()
-            steps = sum(1 for line in log.splitlines() if line.startswith("Time = "))
-            rows.append({"level": level, "ranks": ranks, "cells": result.info["cells"],
-                         "steps": steps, "simulated_s": args.end_time, "wall_s": round(wall, 1),
-                         "wall_per_simulated_s": round(wall / args.end_time, 1)})
+    for name in args.cases:
+        for level in args.levels:
+            for ranks in args.ranks:
+                base = load_case(name)
+                end = end_time_of(base) if args.full else min(args.end_time, end_time_of(base))
+                case = load_case(name, [f"run.end_time={end}"])
+                build = build_dir() / "bench" / f"np{ranks}"
+                t0 = time.perf_counter()
+                result = run_case(case, level, ranks, force=True, build_dir=build)
+                wall = time.perf_counter() - t0
+                log = (result.run_dir / "log.interFoam").read_text()
+                steps = sum(1 for line in log.splitlines() if line.startswith("Time = "))
+                rows.append({"case": name, "level": level, "ranks": ranks,
+                             "mesh": result.info.get("mesh"), "cells": result.info["cells"],
+                             "steps": steps, "simulated_s": end, "wall_s": round(wall, 1),
+                             "wall_per_simulated_s": round(wall / end, 1),
+                             "record_s": end_time_of(base)})
+                print(_line(rows[-1]), flush=True)
     sha = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
                          text=True).stdout.strip()
     out = build_dir() / "bench" / "cfd.json"
     out.write_text(json.dumps({"git": sha, "date": time.strftime("%Y-%m-%d %H:%M UTC",
                                                                    time.gmtime()),
                                "machine": platform.machine(), "rows": rows}, indent=2))
-    print(f"{'level':<8} {'ranks':>5} {'cells':>7} {'steps':>6} {'wall (s)':>9} "
-          f"{'wall/sim s':>10}")
+    print(f"{'case':<26} {'level':<7} {'ranks':>5} {'mesh':<8} {'cells':>7} {'steps':>6} "
+          f"{'wall (s)':>9} {'wall/sim s':>10} {'record (s)':>10}")
     for r in rows:
-        print(f"{r['level']:<8} {r['ranks']:>5} {r['cells']:>7} {r['steps']:>6} "
-              f"{r['wall_s']:>9.1f} {r['wall_per_simulated_s']:>10.1f}")
+        print(_line(r))
     print(f"written: {out}")
     return 0
+
+
+def _line(r: dict) -> str:
+    return (f"{r['case']:<26} {r['level']:<7} {r['ranks']:>5} {r['mesh'] or '':<8} "
+            f"{r['cells']:>7} {r['steps']:>6} {r['wall_s']:>9.1f} "
+            f"{r['wall_per_simulated_s']:>10.1f} {r['record_s']:>10.3g}")
 
 
 if __name__ == "__main__":

@@ -49,6 +49,8 @@ class RunSettings:
     end_time: float | None = _spec(None, minimum=0.0, doc="simulated time")
     write_interval: float = _spec(0.1, minimum=0.0)
     max_courant: float = _spec(0.5, minimum=0.0, maximum=5.0)
+    max_alpha_courant: float | None = _spec(None, minimum=0.0, maximum=5.0,
+                                            doc="at the interface (default: max_courant)")
     max_delta_t: float = _spec(0.005, minimum=0.0, doc="at the coarse level")
     acceleration_relaxation: float = _spec(0.7, minimum=0.0, maximum=1.0)
     inner_distance: float | None = _spec(None, minimum=0.0)

@@ -42,9 +42,10 @@ def add_domain_arguments(parser) -> None:
     """Arguments of ``mesh domain`` (and meshes/fluid_domain.py)."""
     add_case_arguments(parser)
     add_level_argument(parser)
-    parser.add_argument("--kind", default="auto", choices=["auto", "2d", "wedge", "3d"],
+    parser.add_argument("--kind", default="auto",
+                        choices=["auto", "2d", "wedge", "3d", "3d-half"],  # meshing.domains
                         help="auto: 2d for a section, wedge for an upright body of "
-                             "revolution, else 3d")
+                             "revolution, else 3d; 3d-half: x ≥ 0 with a symmetry plane")
     parser.add_argument("--pose", default="release", choices=POSES[1:],
                         help="release (default: the decay test's start) or equilibrium")
     parser.add_argument("--out", metavar="FILE", type=Path,

@@ -25,7 +25,7 @@ from floatfoam.settings import max_cells, memory_text
 
 MESHERS = ("gmsh", "ogrid")
 _PLANE = {"2d": ("frontAndBack",), "ogrid": ("frontAndBack",), "wedge": ("wedge0", "wedge1"),
-          "3d": ()}
+          "3d": (), "3d-half": ("symmetry",)}
 PATCHES_OF = {kind: ("body", "bottom", "sides", "atmosphere", *extra)
               for kind, extra in _PLANE.items()}
 
@@ -34,7 +34,7 @@ PATCHES_OF = {kind: ("body", "bottom", "sides", "atmosphere", *extra)
 class RunMesh:
     """What a run needs to know of its mesh (lengths in m).
 
-    kind : "ogrid", "2d", "wedge" or "3d"
+    kind : "ogrid", "2d", "wedge", "3d" or "3d-half" (x ≥ 0, symmetry plane x = 0)
     factor : r^level: cell counts grow by it in each direction, the time step shrinks by it
     cells : the cell count (None for a gmsh mesh not generated yet)
     share : the fraction of the body inside the domain (a 2D slab t/L, a wedge θ/360°, 3D 1);
@@ -95,11 +95,12 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
     kind = default_kind(case, release)
     box = tank(case)
     share = {"2d": box.thickness / (case.body.length or box.thickness),
-             "wedge": _wedge_angle() / 360.0, "3d": 1.0}[kind]
+             "wedge": _wedge_angle() / 360.0, "3d": 1.0, "3d-half": 0.5}[kind]
     height = box.depth + box.air_height
     extents = {"2d": (0.0, 2 * box.half_length, height),
                "wedge": (box.half_length, 0.0, height),
-               "3d": (2 * box.half_length, 2 * box.half_width, height)}[kind]
+               "3d": (2 * box.half_length, 2 * box.half_width, height),
+               "3d-half": (box.half_length, 2 * box.half_width, height)}[kind]
     inner, outer = _distances(case, float(body_extents(case.body).min()))
     return RunMesh(kind=kind, factor=level_factor(case, level), cells=None, share=share,
                    x_mid=0.0, extents=extents, inner=inner, outer=outer)

@@ -37,8 +37,11 @@ FEATURE_ANGLE = 20.0  # degrees: sharper turns between triangles stay edges (pon
 VERBOSITY = 1  # gmsh messages: 1 errors only; 4 to see where the time goes
 
 
-def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path) -> dict:
+def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
+              half: bool = False) -> dict:
     """Mesh the 3D domain of ``case`` with the body at a pose; write ``path`` (MSH 2.2).
+    ``half``: only x ≥ 0, the plane x = 0 a ``symmetry`` patch (a body symmetric about it,
+    heeled about x: its roll keeps the plane).
 
     Returns a summary: ``path``, ``cells``, ``cell_types``, ``patches`` (faces per patch) and
     ``body_triangles`` ((vertices, faces) of the body patch, earth frame, for volume checks).
@@ -53,6 +56,8 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path) -> dict
                 func = compile_expression(body.expression)
                 vertices = relax_on_surface(vertices, body.faces, func, spec.span)
             body_surfaces, volume = _discrete_body(gmsh, vertices, body.faces, where, tank)
+        elif half:
+            body_surfaces, volume = _solid_body(gmsh, body, where, tank, x_min=0.0)
         else:
             body_surfaces, volume = _solid_body(gmsh, body, where, tank)
         _check_room(gmsh, body_surfaces, tank, spec)
@@ -60,25 +65,28 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path) -> dict
         _size_field(gmsh, body_surfaces, spec, tank,
                     curvature=not isinstance(body, bodies.MeshBody))
         gmsh.model.mesh.generate(3)
-        groups = _physical_groups(gmsh, volume, body_surfaces, tank)
+        groups = _physical_groups(gmsh, volume, body_surfaces, tank, half)
         gmshio.write_msh22(path)
         result = summary(gmsh, groups, path)
         result["body_triangles"] = gmshio.surface_triangles(body_surfaces)
     return result
 
 
-def _solid_body(gmsh, body, where: Pose, tank: Tank) -> tuple[list[int], int]:
+def _solid_body(gmsh, body, where: Pose, tank: Tank,
+                x_min: float | None = None) -> tuple[list[int], int]:
+    """The tank (from ``x_min`` when given, else −half_length) minus the placed solid."""
     occ = gmsh.model.occ
     solid = sections.add_solid(body)
     occ.rotate([(3, solid)], 0, 0, 0, 1, 0, 0, where.heel)
     occ.rotate([(3, solid)], 0, 0, 0, 0, 1, 0, where.trim)
     occ.translate([(3, solid)], 0, 0, where.z_c)
-    box = occ.addBox(-tank.half_length, -tank.half_width, -tank.depth, 2 * tank.half_length,
+    x0 = -tank.half_length if x_min is None else x_min
+    box = occ.addBox(x0, -tank.half_width, -tank.depth, tank.half_length - x0,
                      2 * tank.half_width, tank.depth + tank.air_height)
     out, _ = occ.cut([(3, box)], [(3, solid)])
     occ.synchronize()
     volume = out[0][1]
-    walls = _tank_faces(gmsh, tank)
+    walls = _tank_faces(gmsh, tank) | _plane_faces(gmsh, x0, tank)
     faces = [abs(tag) for _, tag in gmsh.model.getBoundary([(3, volume)], oriented=False)]
     return [tag for tag in faces if tag not in walls], volume
 
@@ -134,6 +142,15 @@ def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank) -> tuple[list
     volume = geo.addVolume([geo.addSurfaceLoop(faces), geo.addSurfaceLoop(body_surfaces)])
     geo.synchronize()
     return body_surfaces, volume
+
+
+def _plane_faces(gmsh, x: float, tank: Tank) -> set[int]:
+    """The faces lying in the plane of constant ``x`` (OpenCASCADE pads bounding boxes by up to
+    ~1e-5 m: a 2 m tank's 2e-6 m missed the symmetry plane)."""
+    eps = max(1e-6 * tank.half_length, 2e-5)
+    return {tag for _, tag in gmsh.model.getEntitiesInBoundingBox(
+        x - eps, -tank.half_width - eps, -tank.depth - eps, x + eps, tank.half_width + eps,
+        tank.air_height + eps, 2)}
 
 
 def _tank_faces(gmsh, tank: Tank) -> set[int]:
@@ -192,15 +209,20 @@ def _size_field(gmsh, body_surfaces, spec: MeshSpec, tank: Tank, curvature: bool
     gmsh.option.setNumber("Mesh.Optimize", 1)
 
 
-def _physical_groups(gmsh, volume: int, body_surfaces: list[int], tank: Tank) -> dict:
+def _physical_groups(gmsh, volume: int, body_surfaces: list[int], tank: Tank,
+                     half: bool = False) -> dict:
     groups = {"bottom": [], "atmosphere": [], "sides": [], "body": sorted(body_surfaces)}
+    if half:
+        groups["symmetry"] = []
     eps = 1e-6 * tank.half_length
     for _, tag in gmsh.model.getBoundary([(3, volume)], oriented=False):
         tag = abs(tag)
         if tag in body_surfaces:
             continue
-        z0, z1 = gmsh.model.getBoundingBox(2, tag)[2::3]
-        if z1 - z0 < eps:
+        x0, _, z0, x1, _, z1 = gmsh.model.getBoundingBox(2, tag)
+        if half and max(abs(x0), abs(x1)) < max(eps, 2e-5):  # OCC's padded box (_plane_faces)
+            groups["symmetry"].append(tag)
+        elif z1 - z0 < eps:
             groups["bottom" if z0 < 0 else "atmosphere"].append(tag)
         else:
             groups["sides"].append(tag)

@@ -1,14 +1,17 @@
 """One entry point for the fluid domains: pick the kind, mesh, write, check the body patch.
 
 Kinds: ``2d`` (2D sections, one cell thick), ``wedge`` (bodies of revolution about z, upright),
-``3d`` (any body). ``auto`` takes 2d for a section, wedge for an upright body of revolution,
-3d otherwise.
+``3d`` (any body), ``3d-half`` (x ≥ 0 and a symmetry plane x = 0, for a body and a motion
+that keep that plane). ``auto`` takes 2d for a section, wedge for an upright body of
+revolution, 3d-half where it can, 3d otherwise.
 """
 
 from __future__ import annotations
 
 import math
 from pathlib import Path
+
+import numpy as np
 
 from floatfoam.bodies.geometry import mesh_volume
 from floatfoam.errors import InputError
@@ -18,7 +21,7 @@ from floatfoam.meshing.domain3d import domain_3d
 from floatfoam.meshing.levels import Pose, mesh_spec, pose, tank
 from floatfoam.meshing.planar import even_polygon, planar_domain
 
-KINDS = ("auto", "2d", "wedge", "3d")
+KINDS = ("auto", "2d", "wedge", "3d", "3d-half")
 
 
 def default_kind(case, where: Pose) -> str:
@@ -27,7 +30,15 @@ def default_kind(case, where: Pose) -> str:
         return "2d"
     if sections.is_axisymmetric(case.body) and where.heel == 0.0 and where.trim == 0.0:
         return "wedge"
-    return "3d"
+    return "3d-half" if half_ready(case, where) else "3d"
+
+
+def half_ready(case, where: Pose) -> bool:
+    """Whether the body and its motion keep the plane x = 0: a primitive solid symmetric about
+    it (ellipsoid, sphere), G on it, no trim."""
+    from floatfoam.bodies.shapes import Ellipsoid
+
+    return isinstance(case.body, Ellipsoid) and case.cog[0] == 0.0 and where.trim == 0.0
 
 
 def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release",
@@ -55,9 +66,18 @@ def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release
 
     path = Path(path) if path else case_build_dir(case.name) / "mesh" / level / \
         f"domain_{kind}.msh"
-    if kind == "3d":
-        result = domain_3d(case, spec, box, where, path)
+    if kind == "3d-half" and not half_ready(case, where):
+        raise InputError(f"--kind 3d-half: {case.name} is not symmetric about the plane x = 0 "
+                         "at this pose (a primitive body with G at x = 0, heeled at most); "
+                         "valid kinds for it: 3d")
+    if kind in ("3d", "3d-half"):
+        half = kind == "3d-half"
+        result = domain_3d(case, spec, box, where, path, half=half)
         vertices, faces = result.pop("body_triangles")
+        if half:  # close the half body by its mirror image for the volume
+            mirrored = vertices * [-1.0, 1.0, 1.0]
+            vertices = np.concatenate([vertices, mirrored])
+            faces = np.concatenate([faces, faces[:, ::-1] + len(mirrored)])
         if mesh_volume(vertices, faces) < 0:
             faces = faces[:, ::-1]
         discrete = mesh_immersed(vertices, faces, 0.0, 0.0, 0.0).volume
@@ -83,10 +103,10 @@ def _planar_immersed(case, spec, where: Pose, kind: str) -> float:
 
 def _sizes(spec, box, kind: str) -> dict:
     """The size parameters of the level, for the tables."""
-    body = spec.body_size_3d if kind == "3d" else spec.body_size
+    body = spec.body_size_3d if kind.startswith("3d") else spec.body_size
     return {"body_cell": body, "band_half_height": box.band, "half_length": box.half_length,
             "depth": box.depth, "air_height": box.air_height,
-            "half_width": box.half_width if kind == "3d" else None,
+            "half_width": box.half_width if kind.startswith("3d") else None,
             "thickness": box.thickness if kind == "2d" else None}
 
 
