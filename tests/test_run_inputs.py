@@ -196,8 +196,7 @@ def test_batch_refuses_bad_input_and_never_overwrites(tmp_path, capsys):
     assert main(["batch", "cylinder_heave", "--time", "soon", "--out", str(out)]) == 2
     assert not out.exists()
     # no run.end_time, and no period to set it from: the released roll capsizes
-    assert main(["batch", "parabolic_cylinder", "--set", "release.heave=0", "--out",
-                 str(out)]) == 2
+    assert main(["batch", "ellipsoid_printed_verdict", "--out", str(out)]) == 2
     assert main(["batch", "cylinder_heave", "--levels", "coarse", "medium", "fine",
                  "--np", "2", "--out", str(out)]) == 0
     text = out.read_text()
