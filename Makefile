@@ -70,8 +70,9 @@ mesh-table: setup  ## mesh levels table (Markdown) of every case, with checkMesh
 report: setup  ## gather every case (theory, potential flow, finished CFD runs) into build/report/
 	$(FF) report
 
-bench-cfd: setup  ## every CFD case, 1 s simulated: cells, steps, wall time, 1 vs 2 ranks
-	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2 $(if $(CASES),--cases $(CASES))
+bench-cfd: setup  ## every CFD case, 1 s simulated (FULL=1: whole records): cells, steps, wall, 1 vs 2 ranks
+	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2 $(if $(CASES),--cases $(CASES)) \
+		$(if $(FULL),--full)
 
 bench-theory: setup  ## time `floatfoam theory` for every case (target ≤ 0.6 s median each)
 	$(PY) scripts/bench_theory.py

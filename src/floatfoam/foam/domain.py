@@ -34,7 +34,8 @@ PATCHES_OF = {kind: ("body", "bottom", "sides", "atmosphere", *extra)
 class RunMesh:
     """What a run needs to know of its mesh (lengths in m).
 
-    kind : "ogrid", "2d", "wedge", "3d" or "3d-half" (x ≥ 0, symmetry plane x = 0)
+    kind : "ogrid", "2d", "wedge", "3d" or "3d-half" (x ≥ 0 and a symmetry plane x = 0 for a
+        heel, y ≥ 0 and y = 0 for a trim)
     factor : r^level: cell counts grow by it in each direction, the time step shrinks by it
     cells : the cell count (None for a gmsh mesh not generated yet)
     share : the fraction of the body inside the domain (a 2D slab t/L, a wedge θ/360°, 3D 1);
@@ -89,10 +90,11 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
     mesher = case.settings.mesh.mesher
     if mesher == "ogrid":
         return _ogrid_plan(case, level, release, local)
-    from floatfoam.meshing.domains import default_kind
+    from floatfoam.meshing.domains import default_kind, half_plane
     from floatfoam.meshing.levels import body_extents, tank
 
     kind = default_kind(case, release)
+    plane = half_plane(case, release) if kind == "3d-half" else None
     box = tank(case)
     share = {"2d": box.thickness / (case.body.length or box.thickness),
              "wedge": _wedge_angle() / 360.0, "3d": 1.0, "3d-half": 0.5}[kind]
@@ -100,7 +102,8 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
     extents = {"2d": (0.0, 2 * box.half_length, height),
                "wedge": (box.half_length, 0.0, height),
                "3d": (2 * box.half_length, 2 * box.half_width, height),
-               "3d-half": (box.half_length, 2 * box.half_width, height)}[kind]
+               "3d-half": (box.half_length, 2 * box.half_width, height) if plane == "x"
+               else (2 * box.half_length, box.half_width, height)}[kind]
     inner, outer = _distances(case, float(body_extents(case.body).min()))
     return RunMesh(kind=kind, factor=level_factor(case, level), cells=None, share=share,
                    x_mid=0.0, extents=extents, inner=inner, outer=outer)

@@ -109,7 +109,8 @@ def run_app(run_dir: Path, name: str, argv: list[str], *, np_: int = 1,
         return log
     cmd = _mpi(argv, np_, hostfile)
     if not quiet:
-        print(f"[{run_dir.name}] {' '.join(argv)} → {log.name}", file=sys.stderr)
+        label = f"{run_dir.parent.name}/{run_dir.name}"  # <case>/<level>, as the progress lines
+        print(f"[{label}] {' '.join(argv)} → {log.name}", file=sys.stderr)
     with open(log, "w") as fh:
         code = processes.run(cmd, cwd=run_dir, stdout=fh, env=foam_env())
     if check and code != 0:

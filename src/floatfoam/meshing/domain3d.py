@@ -38,10 +38,11 @@ VERBOSITY = 1  # gmsh messages: 1 errors only; 4 to see where the time goes
 
 
 def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
-              half: bool = False) -> dict:
+              half: str | None = None) -> dict:
     """Mesh the 3D domain of ``case`` with the body at a pose; write ``path`` (MSH 2.2).
-    ``half``: only x ≥ 0, the plane x = 0 a ``symmetry`` patch (a body symmetric about it,
-    heeled about x: its roll keeps the plane).
+    ``half`` "x" (or "y"): only x ≥ 0 (y ≥ 0), that plane a ``symmetry`` patch — for a body
+    symmetric about it whose motion keeps it (roll about x keeps x = 0, pitch about y keeps
+    y = 0).
 
     Returns a summary: ``path``, ``cells``, ``cell_types``, ``patches`` (faces per patch) and
     ``body_triangles`` ((vertices, faces) of the body patch, earth frame, for volume checks).
@@ -56,10 +57,8 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
                 func = compile_expression(body.expression)
                 vertices = relax_on_surface(vertices, body.faces, func, spec.span)
             body_surfaces, volume = _discrete_body(gmsh, vertices, body.faces, where, tank)
-        elif half:
-            body_surfaces, volume = _solid_body(gmsh, body, where, tank, x_min=0.0)
         else:
-            body_surfaces, volume = _solid_body(gmsh, body, where, tank)
+            body_surfaces, volume = _solid_body(gmsh, body, where, tank, half)
         _check_room(gmsh, body_surfaces, tank, spec)
         # curvature sizing on reparametrised triangles costs minutes: exact solids only
         _size_field(gmsh, body_surfaces, spec, tank,
@@ -73,20 +72,22 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
 
 
 def _solid_body(gmsh, body, where: Pose, tank: Tank,
-                x_min: float | None = None) -> tuple[list[int], int]:
-    """The tank (from ``x_min`` when given, else −half_length) minus the placed solid."""
+                half: str | None = None) -> tuple[list[int], int]:
+    """The tank (its half on the positive side of the plane ``half`` = 0) minus the placed
+    solid."""
     occ = gmsh.model.occ
     solid = sections.add_solid(body)
     occ.rotate([(3, solid)], 0, 0, 0, 1, 0, 0, where.heel)
     occ.rotate([(3, solid)], 0, 0, 0, 0, 1, 0, where.trim)
     occ.translate([(3, solid)], 0, 0, where.z_c)
-    x0 = -tank.half_length if x_min is None else x_min
-    box = occ.addBox(x0, -tank.half_width, -tank.depth, tank.half_length - x0,
-                     2 * tank.half_width, tank.depth + tank.air_height)
+    x0 = 0.0 if half == "x" else -tank.half_length
+    y0 = 0.0 if half == "y" else -tank.half_width
+    box = occ.addBox(x0, y0, -tank.depth, tank.half_length - x0, tank.half_width - y0,
+                     tank.depth + tank.air_height)
     out, _ = occ.cut([(3, box)], [(3, solid)])
     occ.synchronize()
     volume = out[0][1]
-    walls = _tank_faces(gmsh, tank) | _plane_faces(gmsh, x0, tank)
+    walls = _tank_faces(gmsh, tank) | (_plane_faces(gmsh, half, tank) if half else set())
     faces = [abs(tag) for _, tag in gmsh.model.getBoundary([(3, volume)], oriented=False)]
     return [tag for tag in faces if tag not in walls], volume
 
@@ -144,13 +145,18 @@ def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank) -> tuple[list
     return body_surfaces, volume
 
 
-def _plane_faces(gmsh, x: float, tank: Tank) -> set[int]:
-    """The faces lying in the plane of constant ``x`` (OpenCASCADE pads bounding boxes by up to
-    ~1e-5 m: a 2 m tank's 2e-6 m missed the symmetry plane)."""
-    eps = max(1e-6 * tank.half_length, 2e-5)
-    return {tag for _, tag in gmsh.model.getEntitiesInBoundingBox(
-        x - eps, -tank.half_width - eps, -tank.depth - eps, x + eps, tank.half_width + eps,
-        tank.air_height + eps, 2)}
+PLANE_EPS = 2e-5  # m: OpenCASCADE pads bounding boxes by up to ~1e-5 m (a 2 m tank's 2e-6
+                  # missed the symmetry plane)
+
+
+def _plane_faces(gmsh, axis: str, tank: Tank) -> set[int]:
+    """The faces lying in the plane ``axis`` = 0 ("x" or "y")."""
+    eps = max(1e-6 * tank.half_length, PLANE_EPS)
+    lo = [-tank.half_length - eps, -tank.half_width - eps, -tank.depth - eps]
+    hi = [tank.half_length + eps, tank.half_width + eps, tank.air_height + eps]
+    k = "xy".index(axis)
+    lo[k], hi[k] = -eps, eps
+    return {tag for _, tag in gmsh.model.getEntitiesInBoundingBox(*lo, *hi, 2)}
 
 
 def _tank_faces(gmsh, tank: Tank) -> set[int]:
@@ -210,7 +216,7 @@ def _size_field(gmsh, body_surfaces, spec: MeshSpec, tank: Tank, curvature: bool
 
 
 def _physical_groups(gmsh, volume: int, body_surfaces: list[int], tank: Tank,
-                     half: bool = False) -> dict:
+                     half: str | None = None) -> dict:
     groups = {"bottom": [], "atmosphere": [], "sides": [], "body": sorted(body_surfaces)}
     if half:
         groups["symmetry"] = []
@@ -219,8 +225,10 @@ def _physical_groups(gmsh, volume: int, body_surfaces: list[int], tank: Tank,
         tag = abs(tag)
         if tag in body_surfaces:
             continue
-        x0, _, z0, x1, _, z1 = gmsh.model.getBoundingBox(2, tag)
-        if half and max(abs(x0), abs(x1)) < max(eps, 2e-5):  # OCC's padded box (_plane_faces)
+        box = gmsh.model.getBoundingBox(2, tag)
+        z0, z1 = box[2], box[5]
+        k = "xy".index(half) if half else 0
+        if half and max(abs(box[k]), abs(box[k + 3])) < max(eps, PLANE_EPS):
             groups["symmetry"].append(tag)
         elif z1 - z0 < eps:
             groups["bottom" if z0 < 0 else "atmosphere"].append(tag)

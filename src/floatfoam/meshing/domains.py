@@ -1,9 +1,9 @@
 """One entry point for the fluid domains: pick the kind, mesh, write, check the body patch.
 
 Kinds: ``2d`` (2D sections, one cell thick), ``wedge`` (bodies of revolution about z, upright),
-``3d`` (any body), ``3d-half`` (x ≥ 0 and a symmetry plane x = 0, for a body and a motion
-that keep that plane). ``auto`` takes 2d for a section, wedge for an upright body of
-revolution, 3d-half where it can, 3d otherwise.
+``3d`` (any body), ``3d-half`` (x ≥ 0 and a symmetry plane x = 0 for a heel or a heave, y ≥ 0
+and y = 0 for a trim: a body and a motion that keep that plane). ``auto`` takes 2d for a
+section, wedge for an upright body of revolution, 3d-half where it can, 3d otherwise.
 """
 
 from __future__ import annotations
@@ -30,15 +30,22 @@ def default_kind(case, where: Pose) -> str:
         return "2d"
     if sections.is_axisymmetric(case.body) and where.heel == 0.0 and where.trim == 0.0:
         return "wedge"
-    return "3d-half" if half_ready(case, where) else "3d"
+    return "3d-half" if half_plane(case, where) else "3d"
 
 
-def half_ready(case, where: Pose) -> bool:
-    """Whether the body and its motion keep the plane x = 0: a primitive solid symmetric about
-    it (ellipsoid, sphere), G on it, no trim."""
+def half_plane(case, where: Pose) -> str | None:
+    """The symmetry plane the body and its motion keep, "x" (x = 0: no trim) or "y" (y = 0:
+    no heel), for a primitive solid symmetric about both (ellipsoid, sphere) with G on it;
+    None otherwise."""
     from floatfoam.bodies.shapes import Ellipsoid
 
-    return isinstance(case.body, Ellipsoid) and case.cog[0] == 0.0 and where.trim == 0.0
+    if not isinstance(case.body, Ellipsoid):
+        return None
+    if where.trim == 0.0 and case.cog[0] == 0.0:
+        return "x"
+    if where.heel == 0.0 and case.cog[1] == 0.0:
+        return "y"
+    return None
 
 
 def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release",
@@ -66,16 +73,16 @@ def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release
 
     path = Path(path) if path else case_build_dir(case.name) / "mesh" / level / \
         f"domain_{kind}.msh"
-    if kind == "3d-half" and not half_ready(case, where):
-        raise InputError(f"--kind 3d-half: {case.name} is not symmetric about the plane x = 0 "
-                         "at this pose (a primitive body with G at x = 0, heeled at most); "
-                         "valid kinds for it: 3d")
+    half = half_plane(case, where) if kind == "3d-half" else None
+    if kind == "3d-half" and half is None:
+        raise InputError(f"--kind 3d-half: {case.name} keeps no symmetry plane at this pose (an "
+                         "ellipsoid or sphere with G on x = 0 and no trim, or on y = 0 and no "
+                         "heel); valid kinds for it: 3d")
     if kind in ("3d", "3d-half"):
-        half = kind == "3d-half"
         result = domain_3d(case, spec, box, where, path, half=half)
         vertices, faces = result.pop("body_triangles")
         if half:  # close the half body by its mirror image for the volume
-            mirrored = vertices * [-1.0, 1.0, 1.0]
+            mirrored = vertices * ([-1.0, 1.0, 1.0] if half == "x" else [1.0, -1.0, 1.0])
             vertices = np.concatenate([vertices, mirrored])
             faces = np.concatenate([faces, faces[:, ::-1] + len(mirrored)])
         if mesh_volume(vertices, faces) < 0:

@@ -1,0 +1,126 @@
+"""The set-up of a CFD run, without the solver: the mesh each case gets, the six-DoF
+constraints a release excites, the angles of the motion series, defaults and refusals, and
+cases that extend one another. (The runs themselves: tests/test_cfd_bodies.py.)"""
+
+import math
+
+import numpy as np
+import pytest
+
+from floatfoam.bodies.geometry import rotation
+from floatfoam.case import load_case
+from floatfoam.errors import InputError
+from floatfoam.foam import domain, render
+from floatfoam.foam.logwatch import Step
+from floatfoam.foam.runner import Limits, Stall
+from floatfoam.hydrostatics.theory import equilibrium
+
+
+def planned(name, overrides=()):
+    case = load_case(name, list(overrides))
+    state = render.release_state(case, equilibrium(case))
+    return case, state, domain.plan(case, "coarse", state["pose"])
+
+
+@pytest.mark.parametrize("name, kind, share", [
+    ("cylinder_heave", "ogrid", 0.01),  # the O-grid slab is 10 mm of the 1 m section
+    ("elliptic_cylinder", "2d", 1.0),
+    ("sphere", "wedge", 5.0 / 360.0),
+    ("ellipsoid_roll", "3d-half", 0.5),
+    ("stl_pontoon", "3d", 1.0),
+])
+def test_each_body_gets_its_mesh(name, kind, share):
+    _, _, mesh = planned(name)
+    assert mesh.kind == kind and mesh.share == pytest.approx(share)
+    assert set(mesh.patches) >= {"body", "bottom", "sides", "atmosphere"}
+
+
+def test_half_domain_follows_the_release():
+    """A heel keeps x = 0 (the tank is cut there, its length halved); a trim keeps y = 0."""
+    _, _, heel = planned("ellipsoid_roll")
+    _, _, trim = planned("ellipsoid_roll", ["release.heel=0", "release.trim=5"])
+    assert heel.kind == trim.kind == "3d-half"
+    assert heel.extents[0] == pytest.approx(2.0) and heel.extents[1] == pytest.approx(4.0)
+    assert trim.extents[0] == pytest.approx(4.0) and trim.extents[1] == pytest.approx(2.0)
+    _, _, both = planned("ellipsoid_roll", ["release.trim=5"])
+    assert both.kind == "3d"  # heel and trim: no plane is kept
+
+
+@pytest.mark.parametrize("release, expected", [
+    ({"heave": 0.01}, {"line": [0.0, 0.0, 1.0], "orientation": None}),
+    ({"heel": 10.0}, {"plane": [1.0, 0.0, 0.0], "axis": [1.0, 0.0, 0.0]}),
+    ({"trim": 5.0}, {"plane": [0.0, 1.0, 0.0], "axis": [0.0, 1.0, 0.0]}),
+    ({"heel": 10.0, "trim": 5.0}, {}),
+])
+def test_constraints_follow_the_release(release, expected):
+    overrides = [f"release.{k}={v}" for k, v in {"heave": 0.0, "heel": 0.0, "trim": 0.0,
+                                                 **release}.items()]
+    case, state, mesh = planned("ellipsoid_roll", overrides)
+    found = {}
+    for entry in render.constraints(case, mesh, [0.0, 0.0, 0.0]).values():
+        kind = entry["sixDoFRigidBodyMotionConstraint"]
+        found[kind] = entry.get("direction") or entry.get("normal") or entry.get("axis")
+    assert found == expected
+
+
+def test_a_wedge_moves_in_heave_alone():
+    case, state, mesh = planned("sphere", ["release.heave=0.05"])
+    kinds = {e["sixDoFRigidBodyMotionConstraint"]
+             for e in render.constraints(case, mesh, [0.0, 0.0, 0.0]).values()}
+    assert kinds == {"line", "orientation"}
+
+
+def test_release_about_the_equilibrium_attitude():
+    """The body starts heeled by the release from its equilibrium attitude; the solver's
+    orientation is that attitude, and the motion series' angles are measured from the
+    equilibrium (box_bilge with G 10 mm off the centre line floats heeled)."""
+    case = load_case("box_bilge", ["mass.cog=[0.0, 0.01, 0.0]"])
+    eq = equilibrium(case)
+    assert abs(math.degrees(eq.heel)) > 1.0
+    state = render.release_state(case, eq)
+    assert state["pose"].heel == pytest.approx(eq.heel + math.radians(10.0))
+    assert np.allclose(state["orientation"], rotation(state["pose"].heel, 0.0))
+    step = Step(time=0.0, centre_of_mass=np.zeros(3), orientation=state["orientation"])
+    assert step.motion_row(state["equilibrium_orientation"])[4] == pytest.approx(10.0)
+    assert step.motion_row()[4] == pytest.approx(math.degrees(state["pose"].heel))
+
+
+def test_default_end_time_and_its_refusal():
+    """No run.end_time: five periods of the released DoF with the added-mass allowance (roll
+    × 1.15); a release whose DoF capsizes has no period to set it from."""
+    from floatfoam.hydrostatics.theory import theory_summary
+
+    case = load_case("ellipsoid")  # no [run]; released heeled 5°
+    assert case.settings.run.end_time is None
+    roll = theory_summary(case).period("roll")
+    assert render.end_time_of(case) == pytest.approx(round(5 * 1.15 * roll, 2))
+    assert render.end_time_of(load_case("ellipsoid", ["run.end_time=1.0"])) == 1.0
+    with pytest.raises(InputError, match="capsizes"):
+        render.end_time_of(load_case("ellipsoid_printed_verdict"))
+
+
+def test_cases_extend_one_another(tmp_path):
+    child = load_case("sphere_50mm")
+    parent = load_case("sphere")
+    assert child.release["heave"] == 0.05 and parent.release["heave"] == 0.01
+    assert child.mass == parent.mass and child.settings.run.end_time == 3.2
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    (tmp_path / "a" / "case.toml").write_text(f'[case]\nextends = "{tmp_path / "b"}"\n')
+    (tmp_path / "b" / "case.toml").write_text(f'[case]\nextends = "{tmp_path / "a"}"\n')
+    with pytest.raises(InputError, match="loop"):
+        load_case(str(tmp_path / "a"))
+
+
+def test_a_collapsing_time_step_stops_the_run():
+    """100 steps in a row below the floor stop it, with the body's attitude; a short dip (the
+    start-up's small steps) does not."""
+    stall = Stall(Limits(min_delta_t=5e-5))
+    turned = rotation(math.radians(80.4), 0.0)
+    dip = [Step(time=i * 1e-5, delta_t=1e-5, orientation=turned) for i in range(99)]
+    assert stall.check(dip) is None
+    assert stall.check([Step(time=0.1, delta_t=1e-3, orientation=turned)]) is None
+    message = stall.check([Step(time=1.0 + i * 1e-5, delta_t=1e-5, orientation=turned)
+                           for i in range(100)])
+    assert message and "roll 80.4°" in message and "run.outer_distance" in message
+    assert Stall(Limits()).check(dip * 2) is None  # no floor: never
