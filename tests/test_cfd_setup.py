@@ -124,3 +124,23 @@ def test_a_collapsing_time_step_stops_the_run():
                            for i in range(100)])
     assert message and "roll 80.4°" in message and "run.outer_distance" in message
     assert Stall(Limits()).check(dip * 2) is None  # no floor: never
+
+
+def test_summary_of_a_record_too_short_for_the_fit(tmp_path, capsys):
+    """A record of 1.25 cycles (what a strongly radiating section leaves above the noise): the
+    run's summary says why the fit is refused and times the period by the first extrema."""
+    from floatfoam.cli.run import _dof_summary
+    from floatfoam.dofs import dof
+    from floatfoam.hydrostatics.theory import theory_summary
+    from floatfoam.motion import read_motion, write_motion
+
+    zeta, period = 0.25, 0.8
+    wd = 2 * math.pi / period
+    t = np.arange(0.0, 1.0, 0.002)
+    z = 0.01 * np.exp(-zeta * wd / math.sqrt(1 - zeta**2) * t) * np.cos(wd * t)
+    path = write_motion(tmp_path / "motion.csv", t, z=z)
+    _dof_summary(dof("heave"), read_motion(path), theory_summary(load_case("elliptic_cylinder")))
+    out = capsys.readouterr().out
+    assert "CFD heave decay analysis: record: " in out and "need at least 1.5" in out
+    found = float(out.split("period from them ")[1].split()[0])
+    assert found == pytest.approx(period, rel=0.01)  # extrema at 0.4 and 0.8 s
