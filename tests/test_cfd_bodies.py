@@ -1,9 +1,10 @@
 """Every body of the memoir in CFD: real coarse runs on 2 MPI ranks of the gmsh route (marker
 ``openfoam``), each checked against the theory and potential flow (Cummins' model).
 
-Each case runs its whole record (5 periods of its released DoF, or what its case file says).
-The tolerances come from the numbers measured on this machine; the reason for each is
-written beside it.
+Each test runs a shortened record of its case (make test stays within 20 minutes on 2 cores;
+the records are given per test); the cases' whole records run under `make <case>`, and their
+measured numbers are in the cases' READMEs. The tolerances come from the numbers measured on
+this machine; the reason for each is written beside it.
 """
 
 import json
