@@ -195,7 +195,7 @@ def test_capsizing_ellipse_turns_over_to_its_stable_attitude(tmp_path):
 def test_triaxial_ellipsoid_roll_3d(tmp_path):
     """The triaxial ellipsoid (0.20, 0.15, 0.10) m released heeled 10°, in 3D on the half
     domain x ≥ 0 (symmetry plane x = 0, which its roll keeps), on a shortened record of ~1.1
-    roll periods, through its first crest at 0.656 s (the whole 3.6 s, ~15 min, runs under
+    roll periods, through its first crest at 0.656 s (the whole 3.6 s, 16 min 40 s, runs under
     `make ellipsoid_roll`): stable, the period from its first trough and crest within 5 % of
     Cummins' model (3D potential flow: 0.689 s by the same extrema; measured CFD 0.664 s,
     −3.6 %), the draft within 1 %. On the whole record the fitted periods differ by −7.0 %
