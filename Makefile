@@ -55,8 +55,8 @@ MODEL ?= cummins
 potential: setup  ## added mass, radiation damping, periods with added mass of CASE (+ PNG)
 	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 $(FF) potential $(CASE) $(SETARGS) --plot
 
-decay-model: setup  ## free-decay series of CASE, MODEL=linear|nonlinear|cummins
-	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 $(FF) decay-model $(CASE) --model $(MODEL) $(SETARGS)
+decay-model: setup  ## free-decay series of CASE, MODEL=linear|nonlinear|cummins [DOFS=heave,roll]
+	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 $(FF) decay-model $(CASE) --model $(MODEL) $(if $(DOFS),--dofs $(DOFS)) $(SETARGS)
 
 bench-potential: setup  ## time mesh + BEM (no cache) for every case (target < 30 s per body)
 	$(PY) scripts/bench_potential.py --threads 1

@@ -217,3 +217,16 @@ def test_section_roll_about_g_is_sway_times_lever():
         assert m[0, 2] == pytest.approx(-d * m[0, 0], rel=1e-9)
         assert m[2, 0] == pytest.approx(-d * m[0, 0], rel=1e-9)
     assert res["added_mass"][1, 2, 2] == pytest.approx(d * d * res["added_mass"][1, 0, 0])
+
+
+def test_many_panels_and_short_waves_stay_finite():
+    """Two failures the property test found (tests/test_potential_property.py): on panels
+    shorter than ~1 % of their distance from the origin the self term's round-off made it ±π
+    (768 panels on a half circle of radius 1: A∞ came out −2e5 kg/m), and at ω²a/g ≳ 40 the
+    wave part was 0 × inf = nan. The half circle's heave A∞ is ρπa²/2 exactly (the image makes
+    it a whole circle in unbounded fluid, half its added mass ρπa²); 0.1 % for 768 panels."""
+    nodes = _half_cylinder(panels=768)
+    res = section_bem.radiation_coefficients_2d(nodes, [np.inf, math.sqrt(400 * 9.81)])
+    assert res["added_mass"][0, 1, 1] == pytest.approx(1000.0 * math.pi / 2, rel=1e-3)
+    assert np.all(np.isfinite(res["added_mass"])) and np.all(np.isfinite(res["damping"]))
+    assert res["added_mass"][1, 1, 1] == pytest.approx(res["added_mass"][0, 1, 1], rel=0.02)

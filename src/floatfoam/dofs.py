@@ -6,6 +6,11 @@ Each rigid-body DoF the suite analyses has a name (heave, roll, pitch), the key 
 theory's equilibrium that it decays to, and its index in the (heave, roll, pitch) matrices of
 the theory and potential flow. Angles are degrees in files and radians in code
 (docs/conventions.md).
+
+Surge and sway have no hydrostatic restoring and are never released, but a free body moves in
+them when it rolls or pitches: the fluid's inertia couples them to the rotation about G
+(``HORIZONTAL``, indices 3 and 4 of the potential-flow matrices, after heave, roll and pitch;
+:func:`free_dofs` names the DoFs a body released in a fluid moves in).
 """
 
 from __future__ import annotations
@@ -44,9 +49,15 @@ DOFS = (
     Dof("roll", "heel", "roll", "deg", "heel", 1, "kg·m²", "N·m·s"),
     Dof("pitch", "trim", "pitch", "deg", "trim", 2, "kg·m²", "N·m·s"),
 )
+HORIZONTAL = (
+    Dof("surge", "", "x", "m", "x_G", 3, "kg", "N·s/m"),
+    Dof("sway", "", "y", "m", "y_G", 4, "kg", "N·s/m"),
+)
+COUPLED = DOFS + HORIZONTAL  # the order of the potential-flow matrices (heave … sway)
 NAMES = tuple(d.name for d in DOFS)
+COUPLED_NAMES = tuple(d.name for d in COUPLED)
 RELEASE_KEYS = tuple(d.release_key for d in DOFS)
-_BY_NAME = {d.name: d for d in DOFS}
+_BY_NAME = {d.name: d for d in COUPLED}
 
 
 def dof(name: str) -> Dof:
@@ -54,9 +65,37 @@ def dof(name: str) -> Dof:
     try:
         return _BY_NAME[name]
     except KeyError:
-        raise InputError(f"dof = {name!r}: valid are {', '.join(NAMES)}") from None
+        raise InputError(f"dof = {name!r}: valid are {', '.join(COUPLED_NAMES)}") from None
 
 
 def released(release: dict) -> list[Dof]:
     """The DoFs a ``[release]`` table displaces (a non-zero heave, heel or trim)."""
     return [d for d in DOFS if float(release.get(d.release_key, 0.0) or 0.0) != 0.0]
+
+
+def free_dofs(release: dict, *, axisymmetric: bool = False) -> list[Dof]:
+    """The DoFs a body released in a fluid moves in — those the CFD leaves free
+    (:func:`floatfoam.foam.render.constraints`): heave always; sway and roll after a heel;
+    surge and pitch after a trim; heave alone for a body of revolution in heave (a wedge)."""
+    heel = float(release.get("heel", 0.0) or 0.0) != 0.0
+    trim = float(release.get("trim", 0.0) or 0.0) != 0.0
+    names = ["heave"]
+    if not axisymmetric:
+        names += ["roll", "sway"] * heel + ["pitch", "surge"] * trim
+    return sorted((_BY_NAME[n] for n in names), key=lambda d: d.index)
+
+
+def parse_dofs(text: str) -> list[Dof]:
+    """DoFs from a comma-separated list of names (``--dofs roll,sway``), in matrix order; an
+    InputError naming the valid ones otherwise."""
+    names = [n.strip() for n in text.split(",") if n.strip()]
+    if not names:
+        raise InputError(f"--dofs {text!r}: valid is a comma-separated list of "
+                         f"{', '.join(COUPLED_NAMES)}")
+    chosen = {}
+    for name in names:
+        if name not in _BY_NAME:
+            raise InputError(f"--dofs {text!r}: {name!r} is not a DoF; valid are "
+                             f"{', '.join(COUPLED_NAMES)}")
+        chosen[name] = _BY_NAME[name]
+    return sorted(chosen.values(), key=lambda d: d.index)

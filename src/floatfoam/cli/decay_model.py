@@ -24,6 +24,10 @@ def register(sub) -> None:
                    help="motion CSV to write (default build/<case>/decay_<model>.csv)")
     p.add_argument("--nonlinear-restoring", action="store_true",
                    help="cummins: exact hydrostatic restoring instead of C x")
+    p.add_argument("--dofs", default=None, metavar="LIST",
+                   help="cummins: the DoFs solved, e.g. heave,roll (roll about G alone) or "
+                        "heave,roll,sway; default those a free body moves in after the "
+                        "release (sway with a heel, surge with a trim), as in the CFD")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 
@@ -36,20 +40,23 @@ def run(args) -> int:
     from floatfoam.case import load_case
     from floatfoam.potential.models import decay_series, write_series
 
+    chosen = dofs.parse_dofs(args.dofs) if args.dofs is not None else None
     case = load_case(args.case, args.overrides)
     series = decay_series(case, args.model, duration=args.duration,
-                          nonlinear_restoring=args.nonlinear_restoring)
+                          nonlinear_restoring=args.nonlinear_restoring, dofs=chosen)
     suffix = "_nonlinear_restoring" if args.nonlinear_restoring else ""
     out = Path(args.out) if args.out else \
         layout.case_build_dir(case.name) / f"decay_{args.model}{suffix}.csv"
     write_series(out, series)
     report = {"case": case.name, "model": args.model, "csv": str(out),
+              "solved_dofs": series.get("dofs"),
               "samples": int(len(series["time"])), "duration": float(series["time"][-1]),
               "dofs": _analyse(case, series)}
     if args.json:
         print(dump_json(report))
         return 0
-    print(f"{case.name}: {args.model} model, {report['samples']} samples over "
+    solved = f" in {', '.join(series['dofs'])}" if series.get("dofs") else ""
+    print(f"{case.name}: {args.model} model{solved}, {report['samples']} samples over "
           f"{report['duration']:.4g} s → {out}")
     for dof, res in report["dofs"].items():
         if "error" in res:

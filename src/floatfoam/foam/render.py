@@ -17,6 +17,7 @@ from foamlib import FoamFile
 
 from floatfoam.bodies.geometry import rotation
 from floatfoam.case import Case
+from floatfoam.dofs import free_dofs, released
 from floatfoam.errors import InputError
 from floatfoam.foam import domain
 from floatfoam.foam.dictionaries import write_dict
@@ -121,7 +122,6 @@ def end_time_of(case: Case) -> float:
     the theory's period × :data:`PERIOD_ALLOWANCE` for the added mass."""
     if case.settings.run.end_time is not None:
         return case.settings.run.end_time
-    from floatfoam.dofs import released
     from floatfoam.hydrostatics.theory import theory_summary
 
     theory = theory_summary(case)
@@ -164,18 +164,19 @@ def _fluid(case: Case, run_dir: Path) -> None:
 
 
 def constraints(case: Case, mesh: RunMesh, cog: list[float]) -> dict:
-    """The six-DoF constraints of the motion the release excites: heave alone (a line and a
-    fixed orientation) for a pure heave release and always in a wedge; heave, sway and roll in
-    the (y, z) plane for a heel; heave, surge and pitch in the (x, z) plane for a trim (3D);
-    none when both are released (3D)."""
-    heel, trim = case.release["heel"] != 0.0, case.release["trim"] != 0.0
-    if mesh.kind == "wedge" or not (heel or trim):
+    """The six-DoF constraints of the motion the release excites (:func:`floatfoam.dofs.free_dofs`,
+    which the potential-flow models share): heave alone (a line and a fixed orientation) for a
+    pure heave release and always in a wedge; heave, sway and roll in the (y, z) plane for a
+    heel; heave, surge and pitch in the (x, z) plane for a trim (3D); none when both are
+    released (3D)."""
+    free = {d.name for d in free_dofs(case.release, axisymmetric=mesh.kind == "wedge")}
+    if free == {"heave"}:
         return {"heaveOnly": {"sixDoFRigidBodyMotionConstraint": "line",
                               "centreOfRotation": cog, "direction": [0.0, 0.0, 1.0]},
                 "noRotation": {"sixDoFRigidBodyMotionConstraint": "orientation"}}
-    if heel and trim:
+    if "roll" in free and "pitch" in free:
         return {}
-    axis = [1.0, 0.0, 0.0] if heel else [0.0, 1.0, 0.0]
+    axis = [1.0, 0.0, 0.0] if "roll" in free else [0.0, 1.0, 0.0]
     return {"inPlane": {"sixDoFRigidBodyMotionConstraint": "plane", "centreOfRotation": cog,
                         "normal": axis},
             "oneAxis": {"sixDoFRigidBodyMotionConstraint": "axis", "axis": axis}}

@@ -4,7 +4,9 @@
 * ``nonlinear``: the memoir's rigorous equations, exact hydrostatics at every instant
   (:mod:`floatfoam.potential.rigid_body`);
 * ``cummins``: Cummins (1962) with A∞ and the radiation memory from the potential-flow
-  coefficients (:mod:`floatfoam.potential.radiation`), linear or nonlinear restoring.
+  coefficients (:mod:`floatfoam.potential.radiation`), linear or nonlinear restoring, in the
+  DoFs a free body moves in (:func:`floatfoam.dofs.free_dofs`: sway follows a roll, surge a
+  pitch, as in the CFD) or those ``dofs`` names.
 
 The body is released from rest at its equilibrium displaced by the case's [release] offsets
 (heave of G in m, heel and trim in degrees). The series has the motion-CSV columns
@@ -20,7 +22,7 @@ import math
 import numpy as np
 
 from floatfoam.bodies.geometry import rotation
-from floatfoam.dofs import DOFS, released
+from floatfoam.dofs import DOFS, HORIZONTAL, free_dofs, released
 from floatfoam.errors import InputError
 
 MODELS = ("linear", "nonlinear", "cummins")
@@ -49,14 +51,20 @@ def time_scales(mass: np.ndarray, stiffness: np.ndarray) -> np.ndarray:
 
 
 def decay_series(case, model: str, *, duration: float | None = None, dt: float | None = None,
-                 nonlinear_restoring: bool = False, coefficients=None) -> dict:
+                 nonlinear_restoring: bool = False, coefficients=None, dofs=None) -> dict:
     """Motion series of ``case`` by ``model`` (one of MODELS), in file units (degrees).
 
+    ``dofs`` (cummins only): the DoFs solved (:class:`floatfoam.dofs.Dof` list), default the
+    ones a free body moves in after the release; the others stay at equilibrium.
+
     Returns a dict with the motion-CSV columns (time, x, y, z, roll, pitch, yaw, u, v, w, p,
-    q, r) as arrays, plus ``model`` and, for cummins, ``added_mass_inf``.
+    q, r) as arrays, plus ``model`` and, for cummins, ``added_mass_inf`` and ``dofs`` (names).
     """
     if model not in MODELS:
         raise InputError(f"--model {model!r}: valid models are {', '.join(MODELS)}")
+    if dofs is not None and model != "cummins":
+        raise InputError(f"--dofs applies to --model cummins only (not {model}): the memoir's "
+                         "models have no fluid to couple the DoFs")
     eq, g_pos, mass, stiffness, x0 = _setup(case)
     if model != "nonlinear":
         refuse_capsizing(case, eq, stiffness, model)
@@ -84,9 +92,10 @@ def decay_series(case, model: str, *, duration: float | None = None, dt: float |
 
         x, v = linear_decay(mass, stiffness, x0, t)
     else:
-        x, v, a_inf = _cummins(case, eq, g_pos, mass, stiffness, x0, t, nonlinear_restoring,
-                               coefficients)
-        out["added_mass_inf"] = a_inf
+        x, v, a_inf, chosen = _cummins(case, eq, g_pos, mass, stiffness, x0, t,
+                                       nonlinear_restoring, coefficients, dofs)
+        out.update(added_mass_inf=a_inf, dofs=[d.name for d in chosen],
+                   x=g_pos[0] + x[:, 3], y=g_pos[1] + x[:, 4], u=v[:, 3], v=v[:, 4])
     deg = math.degrees(1.0)
     out.update(z=g_pos[2] + x[:, 0], roll=math.degrees(eq.heel) + x[:, 1] * deg,
                pitch=math.degrees(eq.trim) + x[:, 2] * deg, yaw=np.zeros_like(t),
@@ -111,23 +120,57 @@ def refuse_capsizing(case, eq, stiffness, model: str) -> None:
                              "stable attitude)")
 
 
-def _cummins(case, eq, g_pos, mass, stiffness, x0, t, nonlinear_restoring, coefficients):
+def _cummins(case, eq, g_pos, mass, stiffness, x0, t, nonlinear_restoring, coefficients,
+             dofs):
+    """Cummins' equation in the chosen DoFs; returns (x, v) in all five (heave, roll, pitch,
+    surge, sway; the others zero), A∞ of the chosen ones and the chosen DoFs."""
     from floatfoam.potential.radiation import radiation_coefficients
+    from floatfoam.potential.resonance import mass_matrix
     from floatfoam.potential.timedomain import cummins_decay, retardation_kernel
 
+    chosen = list(dofs) if dofs is not None else free_dofs(case.release)
+    missing = [d.name for d in released(case.release) if d not in chosen]
+    if missing:
+        raise InputError(f"--dofs {','.join(d.name for d in chosen)}: the release displaces "
+                         f"{', '.join(missing)}; valid lists include it")
     coef = coefficients or radiation_coefficients(case, eq)
+    uncovered = [d.name for d in chosen if not coef.covered[d.index]]
+    if uncovered:
+        raise InputError(f"--dofs {','.join(d.name for d in chosen)}: {', '.join(uncovered)} "
+                         f"not solved by the potential flow ({coef.method}); valid are "
+                         + ", ".join(d.name for d in DOFS + HORIZONTAL if coef.covered[d.index]))
+    pick = [d.index for d in chosen]
+    block = np.ix_(pick, pick)
+    mass_all = mass_matrix(case.mass, case.gyradius, rotation(eq.heel, eq.trim),
+                           horizontal=True)
+    stiffness_all = np.zeros_like(mass_all)
+    stiffness_all[:3, :3] = stiffness
+    x0_all = np.concatenate([x0, np.zeros(2)])
     spacing = float(coef.omega[1] - coef.omega[0])
     # the kernel is resolved up to t ≈ 2π/Δω by the frequency sampling; it has decayed by then
     kernel_t = t[t <= min(t[-1], 2.0 * math.pi / spacing)]
-    kernel = retardation_kernel(coef.omega, coef.damping, kernel_t)
+    kernel = retardation_kernel(coef.omega, coef.damping[(slice(None), *block)], kernel_t)
     restoring = None
     if nonlinear_restoring:
         from floatfoam.potential.rigid_body import RigidBody, restoring_force
 
-        restoring = restoring_force(RigidBody.from_case(case), g_pos[2], eq.heel, eq.trim)
-    x, v = cummins_decay(mass, stiffness, coef.added_mass_inf, kernel_t, kernel, x0, t,
-                         restoring=restoring)
-    return x, v, coef.added_mass_inf
+        full = restoring_force(RigidBody.from_case(case), g_pos[2], eq.heel, eq.trim)
+        hydrostatic = [k for k in pick if k < 3]  # heave, roll, pitch
+
+        def restoring(x_chosen):
+            x3 = np.zeros(3)
+            where = [pick.index(k) for k in hydrostatic]
+            x3[hydrostatic] = x_chosen[where]
+            force = np.zeros(len(pick))
+            force[where] = full(x3)[hydrostatic]
+            return force
+    a_inf = coef.added_mass_inf[block]
+    x, v = cummins_decay(mass_all[block], stiffness_all[block], a_inf, kernel_t, kernel,
+                         x0_all[pick], t, restoring=restoring)
+    x_all = np.zeros((len(t), len(mass_all)))
+    v_all = np.zeros_like(x_all)
+    x_all[:, pick], v_all[:, pick] = x, v
+    return x_all, v_all, a_inf, chosen
 
 
 def write_series(path, series: dict):

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam.dofs import DOFS, NAMES
+from floatfoam.dofs import COUPLED
 from floatfoam.potential.radiation import RadiationCoefficients
 from floatfoam.potential.summary import PotentialSummary
 
@@ -25,14 +25,14 @@ def plot_coefficients(coef: RadiationCoefficients, path: str | Path, *,
     fig, axes = plt.subplots(2, len(dofs), figsize=(3.6 * len(dofs), 5.6), dpi=120,
                              squeeze=False, sharex=True)
     for col, i in enumerate(dofs):
-        name = NAMES[i]
-        unit_a, unit_b = DOFS[i].inertia_unit, DOFS[i].damping_unit
+        name = COUPLED[i].name
+        unit_a, unit_b = COUPLED[i].inertia_unit, COUPLED[i].damping_unit
         ax_a, ax_b = axes[0, col], axes[1, col]
         ax_a.plot(coef.omega, coef.added_mass[:, i, i], "o-", ms=3, color="tab:blue")
         ax_a.axhline(coef.added_mass_inf[i, i], color="tab:blue", ls="--", lw=0.8,
                      label="A∞")
         ax_b.plot(coef.omega, coef.damping[:, i, i], "o-", ms=3, color="tab:red")
-        omega_n = summary.dof(name).natural_frequency if summary else None
+        omega_n = summary.dof(name).natural_frequency if summary else None  # surge, sway: None
         for ax in (ax_a, ax_b):
             if omega_n:
                 ax.axvline(omega_n, color="0.4", lw=0.8, ls=":", label="ω_n")

@@ -10,8 +10,10 @@
   multiplied by the section's length L (strip theory without end effects, docs/conventions.md:
   section quantities are for the length L).
 
-Degrees of freedom (heave, roll, pitch), rotations about the centre of gravity G at
-equilibrium, earth axes. Results are cached in ``build/potential/<sha256>.npz`` keyed by the
+Degrees of freedom (heave, roll, pitch, surge, sway: :data:`floatfoam.dofs.COUPLED`), rotations
+about the centre of gravity G at equilibrium, earth axes; surge and sway have no restoring but
+their added inertia couples them to pitch and roll (a free body does not roll about G alone).
+Results are cached in ``build/potential/<sha256>.npz`` keyed by the
 body's surface mesh, the attitude, the panel count, G, the depth, the fluid and the
 frequencies (and the Capytaine and floatfoam versions).
 """
@@ -27,34 +29,39 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam.dofs import NAMES
+from floatfoam.dofs import COUPLED, NAMES
 from floatfoam.potential import bem_mesh
 from floatfoam.potential import sections as section_bem
 from floatfoam.potential.bounded import Progress, run_bounded
 from floatfoam.potential.summary import DofPotential, PotentialSummary
 
-CACHE_VERSION = 1  # bump when the numerics change
+CACHE_VERSION = 2  # bump when the numerics change (2: surge and sway added)
 OMEGA_MIN_ND = 0.05  # ω √(ℓ/g), ℓ = half the waterline beam (2D) or √(A_wp/π) (3D)
 OMEGA_MAX_ND = 2.5  # wave length 2πℓ/2.5² ≈ ℓ: ≈ 7 panels per wave length at 800 panels
 FREQUENCIES = 32
 COUPLING_NOTE = 0.05  # off-diagonal / √(diagonal product) above which a note says so
+COUPLED_INDEX = {d.name: d.index for d in COUPLED}
+# the horizontal DoF a free body moves in with each rotation (no restoring: it follows)
+HORIZONTAL_PARTNER = {"roll": COUPLED_INDEX["sway"], "pitch": COUPLED_INDEX["surge"]}
 MIN_KH = 0.15  # Capytaine's finite-depth Green function (Prony fit) fails below kh ≈ 0.1–0.15
 
 
 @dataclass(frozen=True)
 class RadiationCoefficients:
-    """A(ω), B(ω) for (heave, roll, pitch) about G, earth axes; for a 2D section, for its
-    length L (the 2D values times L).
+    """A(ω), B(ω) for (heave, roll, pitch, surge, sway) about G, earth axes; for a 2D section,
+    for its length L (the 2D values times L).
 
     Attributes
     ----------
     omega : (n,) rad/s
-    added_mass, damping : (n, 3, 3) in kg, kg·m, kg·m² (and N·s/m, N·m·s, N·m·s)
-    added_mass_inf : (3, 3), the infinite-frequency limit A∞
+    added_mass, damping : (n, 5, 5) in kg, kg·m, kg·m² (and N·s/m, N·m·s, N·m·s), in the
+        order of :data:`floatfoam.dofs.COUPLED`
+    added_mass_inf : (5, 5), the infinite-frequency limit A∞
     method : "capytaine-3d" or "panel-2d"
     panels : number of panels on the wetted surface (the whole hull, lid not counted)
     depth : water depth used by the solver (inf for deep water)
-    covered : which of (heave, roll, pitch) the solver covers (2D: no pitch)
+    covered : which of (heave, roll, pitch, surge, sway) the solver covers (2D: no pitch,
+        no surge)
     notes : what the user should know about these numbers
     """
 
@@ -65,7 +72,7 @@ class RadiationCoefficients:
     method: str
     panels: int
     depth: float
-    covered: tuple[bool, bool, bool] = (True, True, True)
+    covered: tuple[bool, ...] = (True,) * len(COUPLED)
     notes: tuple[str, ...] = field(default=())
 
 
@@ -87,9 +94,10 @@ def capytaine_coefficients(vertices: np.ndarray, faces: np.ndarray, *, centre, o
     rebuilt by reflection (Capytaine's ReflectionSymmetricMesh). ``lid_mesh``: (vertices,
     faces) of the interior waterplane of that part (default: Capytaine's ``generate_lid``).
 
-    Solves Capytaine's radiation problems for Heave, Roll and Pitch about ``centre`` with the
-    direct method; A_ij = Re F_ij / ω², B_ij = Im F_ij / ω (Capytaine's convention, e^{-iωt}).
-    ``omega = inf`` is solved too (A∞). Returns (A (n, 3, 3), B (n, 3, 3), A∞ (3, 3)).
+    Solves Capytaine's radiation problems for Heave, Roll, Pitch, Surge and Sway about
+    ``centre`` with the direct method (one matrix and its LU per frequency, five right-hand
+    sides); A_ij = Re F_ij / ω², B_ij = Im F_ij / ω (Capytaine's convention, e^{-iωt}).
+    ``omega = inf`` is solved too (A∞). Returns (A (n, 5, 5), B (n, 5, 5), A∞ (5, 5)).
     ``progress`` (a :class:`~floatfoam.potential.bounded.Progress`) hears of each frequency.
     """
     import capytaine as cpt
@@ -105,7 +113,7 @@ def capytaine_coefficients(vertices: np.ndarray, faces: np.ndarray, *, centre, o
         lid_part = mesh.generate_lid(z=0.0)
     if lid_part is not None and lid_part.nb_faces == 0:
         lid_part = None  # fully submerged: no interior free surface
-    names = ("Heave", "Roll", "Pitch")
+    names = tuple(d.name.capitalize() for d in COUPLED)
     body = cpt.FloatingBody(mesh=mesh, lid_mesh=lid_part, name="hull",
                             dofs=cpt.rigid_body_dofs(only=names, rotation_center=centre))
     solver = cpt.BEMSolver(method="direct")
@@ -118,10 +126,10 @@ def capytaine_coefficients(vertices: np.ndarray, faces: np.ndarray, *, centre, o
         results += solver.solve_all(problems, progress_bar=False, _display_errors=False)
         if progress is not None:
             progress.update(k + 1)
-    out_a = np.full((len(all_omegas), 3, 3), np.nan)
-    out_b = np.full((len(all_omegas), 3, 3), np.nan)
+    out_a = np.full((len(all_omegas), len(names), len(names)), np.nan)
+    out_b = np.full_like(out_a, np.nan)
     for k, res in enumerate(results):
-        i_w, j = divmod(k, 3)
+        i_w, j = divmod(k, len(names))
         if hasattr(res, "exception"):
             raise RuntimeError(f"Capytaine failed at ω = {all_omegas[i_w]:.4g} rad/s "
                                f"({res.radiating_dof}): {res.exception}")
@@ -133,15 +141,16 @@ def capytaine_coefficients(vertices: np.ndarray, faces: np.ndarray, *, centre, o
 
 def section_coefficients(nodes: np.ndarray, *, centre_yz, omegas, length: float,
                          rho: float = 1000.0, g: float = 9.81):
-    """2D coefficients of a section (:mod:`floatfoam.potential.sections`) as (heave, roll, pitch)
-    matrices for the length L: heave and roll (about G) times L; pitch rows are zero."""
+    """2D coefficients of a section (:mod:`floatfoam.potential.sections`) as (heave, roll, pitch,
+    surge, sway) matrices for the length L: sway, heave and roll (about G) times L; pitch and
+    surge rows are zero."""
     res = section_bem.radiation_coefficients_2d(nodes, [*omegas, np.inf], centre=centre_yz,
                                                 rho=rho, g=g)
-    pick = [1, 2]  # heave, roll among (sway, heave, roll)
-    a = np.zeros((len(omegas) + 1, 3, 3))
+    order = [COUPLED_INDEX[m] for m in section_bem.MODES]  # (sway, heave, roll) → matrix rows
+    a = np.zeros((len(omegas) + 1, len(COUPLED), len(COUPLED)))
     b = np.zeros_like(a)
-    a[:, :2, :2] = res["added_mass"][:, pick][:, :, pick] * length
-    b[:, :2, :2] = res["damping"][:, pick][:, :, pick] * length
+    a[np.ix_(range(len(a)), order, order)] = res["added_mass"] * length
+    b[np.ix_(range(len(b)), order, order)] = res["damping"] * length
     return a[:-1], b[:-1], a[-1]
 
 
@@ -223,7 +232,8 @@ def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=N
     if body.is_section:
         a, b, a_inf = section_coefficients(nodes, centre_yz=centre[1:], omegas=omegas,
                                            length=body.length, rho=case.rho, g=case.g)
-        count, method, covered = len(nodes) - 1, "panel-2d", (True, True, False)
+        count, method = len(nodes) - 1, "panel-2d"
+        covered = tuple(d.name in section_bem.MODES for d in COUPLED)
     else:
         draft = f"z_c = {eq.z_c:.6g} m, heel {math.degrees(eq.heel):.3g}°, trim " \
             f"{math.degrees(eq.trim):.3g}°"
@@ -232,7 +242,7 @@ def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=N
             limit=time_limit(panels, len(omegas), depth),
             label=f"potential flow of {case.name} ({draft}, {panels} panels)",
             advice="valid: another [potential] panels (or --panels), or report the body")
-        method, covered = "capytaine-3d", (True,) * 3
+        method, covered = "capytaine-3d", (True,) * len(COUPLED)
         if planes:
             method += f" (symmetric about {' and '.join(planes)})"
     arrays = {"omega": omegas, "added_mass": a, "damping": b, "added_mass_inf": a_inf,
@@ -288,12 +298,19 @@ def potential_summary(case, *, coefficients: RadiationCoefficients | None = None
     from floatfoam.bodies.geometry import rotation
     from floatfoam.hydrostatics.theory import equilibrium, stiffness_matrix
     from floatfoam.hydrostatics.verdict import verdict
-    from floatfoam.potential.resonance import damping_ratio, mass_matrix, natural_frequency
+    from floatfoam.potential.resonance import (
+        condensed,
+        damping_ratio,
+        mass_matrix,
+        natural_frequency,
+    )
 
     eq = equilibrium(case)
     coef = coefficients or radiation_coefficients(case, eq, **kw)
     stiffness = stiffness_matrix(case, eq)
-    mass = mass_matrix(case.mass, case.gyradius, rotation(eq.heel, eq.trim))
+    mass_all = mass_matrix(case.mass, case.gyradius, rotation(eq.heel, eq.trim),
+                           horizontal=True)
+    mass = mass_all[:3, :3]
     rgv = case.rho * case.g * eq.immersed.volume
     oscillates = [stiffness[0, 0] > 0.0] + [
         verdict(stiffness[i, i] / rgv, case.body.size, eq.immersed.exact) == "oscillates"
@@ -318,13 +335,22 @@ def potential_summary(case, *, coefficients: RadiationCoefficients | None = None
         values.update(period=2 * math.pi / omega_n, natural_frequency=omega_n, added_mass=a_n,
                       radiation_damping=b_n,
                       damping_ratio=damping_ratio(mass[i, i], omega_n, a_n, b_n))
+        partner = HORIZONTAL_PARTNER.get(dof)
+        if partner is not None and coef.covered[partner]:
+            a_eff, b_eff = condensed(coef.omega, mass_all, coef.added_mass, coef.damping,
+                                     i, [partner])
+            omega_c, _ = natural_frequency(mass[i, i], stiffness[i, i], coef.omega, a_eff)
+            w = min(max(omega_c, coef.omega[0]), coef.omega[-1])
+            values.update(coupled_period=2 * math.pi / omega_c, coupled_damping_ratio=(
+                damping_ratio(mass[i, i], omega_c, float(np.interp(w, coef.omega, a_eff)),
+                              float(np.interp(w, coef.omega, b_eff)))))
         if math.isfinite(case.depth) and coef.method == "panel-2d":
             notes.append(f"{dof}: ω²h/g = {omega_n**2 * case.depth / case.g:.3g} at "
                          "resonance (deep water holds within 0.4 % above π)")
     for i, j in ((0, 1), (0, 2), (1, 2)):
         if coef.covered[i] and coef.covered[j]:
             ratios = [abs(m[i, j]) / math.sqrt(abs(m[i, i] * m[j, j]) or 1.0)
-                      for m in (stiffness, coef.added_mass_inf + mass)]
+                      for m in (stiffness, coef.added_mass_inf[:3, :3] + mass)]
             if max(ratios) > COUPLING_NOTE:
                 notes.append(f"{NAMES[i]}–{NAMES[j]} coupling {max(ratios):.0%} (stiffness "
                              "or inertia): the periods above are uncoupled")
@@ -335,5 +361,5 @@ def potential_summary(case, *, coefficients: RadiationCoefficients | None = None
                      "count": int(len(coef.omega))},
         section_length=case.body.length, notes=notes,
         dofs={dof: DofPotential(**values) for dof, values in per_dof.items()},
-        added_mass_inf=coef.added_mass_inf.tolist(), stiffness=stiffness.tolist(),
+        added_mass_inf=coef.added_mass_inf[:3, :3].tolist(), stiffness=stiffness.tolist(),
         mass_matrix=mass.tolist())

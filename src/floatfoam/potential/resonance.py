@@ -71,11 +71,54 @@ def damping_ratio(mass: float, omega_n: float, added_mass_n: float, damping_n: f
     return damping_n / (2.0 * omega_n * (mass + added_mass_n))
 
 
-def mass_matrix(mass: float, gyradius, rotation: np.ndarray) -> np.ndarray:
+def mass_matrix(mass: float, gyradius, rotation: np.ndarray, *,
+                horizontal: bool = False) -> np.ndarray:
     """Rigid-body mass matrix for (heave, roll, pitch) about G in earth axes: diag(M) for
-    heave and the (x, y) block of R · M diag(k_x², k_y², k_z²) · Rᵀ for roll and pitch."""
+    heave and the (x, y) block of R · M diag(k_x², k_y², k_z²) · Rᵀ for roll and pitch;
+    with ``horizontal``, (heave, roll, pitch, surge, sway) (5 × 5, M for surge and sway: about
+    G, translation and rotation are not coupled by the body's own inertia)."""
     inertia = rotation @ np.diag(mass * np.asarray(gyradius, dtype=float) ** 2) @ rotation.T
-    out = np.zeros((3, 3))
+    out = np.zeros((5, 5) if horizontal else (3, 3))
     out[0, 0] = mass
-    out[1:, 1:] = inertia[:2, :2]
+    out[1:3, 1:3] = inertia[:2, :2]
+    if horizontal:
+        out[3, 3] = out[4, 4] = mass
     return out
+
+
+def condensed(omega: np.ndarray, mass: np.ndarray, added_mass: np.ndarray,
+              damping: np.ndarray, keep: int, free: list[int]):
+    """Added mass and damping of DoF ``keep`` when the DoFs ``free`` (no restoring: surge,
+    sway) follow it freely — the impedance Z = −ω²(M + A) − iωB (e^{−iωt}) condensed onto
+    ``keep`` (Schur complement):
+
+        Z_eff = Z_kk − Z_kf Z_ff⁻¹ Z_fk = −ω² (M_kk + A_eff) − iω B_eff.
+
+    A free body rolling at frequency ω sways so that the fluid's force on it in sway is
+    balanced by its own inertia; the roll it sees has another inertia and damping (lighter at
+    high frequency: A_eff ≤ A_kk at ω = ∞, B = 0). For a
+    circle with G a distance d below its axis A_kk = d²A_22, and at ω = ∞ (no damping)
+    A_eff = d²A_22 M/(M + A_22).
+    ``omega = inf`` rows (A∞, B = 0) are condensed with the inertia alone.
+
+    Shapes: omega (n,), mass (d, d), added_mass and damping (n, d, d) → A_eff, B_eff (n,).
+    """
+    omega = np.asarray(omega, dtype=float)
+    added_mass = np.asarray(added_mass, dtype=float).reshape(len(omega), *mass.shape)
+    damping = np.asarray(damping, dtype=float).reshape(added_mass.shape)
+    a_eff = np.empty(len(omega))
+    b_eff = np.empty(len(omega))
+    k, f = [keep], list(free)
+    for n, w in enumerate(omega):
+        if np.isinf(w):
+            inertia = mass + added_mass[n]
+            z = -(inertia - 0.0j)
+            scale = 1.0
+        else:
+            z = -(w * w) * (mass + added_mass[n]) - 1j * w * damping[n]
+            scale = w * w
+        z_eff = z[np.ix_(k, k)] - z[np.ix_(k, f)] @ np.linalg.solve(z[np.ix_(f, f)],
+                                                                     z[np.ix_(f, k)])
+        a_eff[n] = -z_eff[0, 0].real / scale - mass[keep, keep]
+        b_eff[n] = 0.0 if np.isinf(w) else -z_eff[0, 0].imag / w
+    return a_eff, b_eff

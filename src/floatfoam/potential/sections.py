@@ -114,10 +114,33 @@ def _rankine(x: np.ndarray, p: np.ndarray, q: np.ndarray, n: np.ndarray):
         return log_term - u + ah * np.arctan2(u, ah)
 
     single = primitive(u2) - primitive(u1)
-    tiny = 1e-14 * length[None, :]
+    # a point within 1e-9 of a panel length of its line is on it (the self term, whose
+    # principal value is 0): its h is round-off of the coordinates, ~1e-16 of |x|, which
+    # exceeded the former 1e-14 × length on panels shorter than 1 % of |x| and made the self
+    # term ±π (768 panels on a half circle of radius 1: A∞ came out negative)
+    tiny = 1e-9 * length[None, :]
     safe_h = np.where(ah > tiny, h, 1.0)
     double = np.where(ah > tiny, -(np.arctan(u2 / safe_h) - np.arctan(u1 / safe_h)), 0.0)
     return single, double
+
+
+ASYMPTOTIC_E1 = 40.0  # |z| above which e^z E1(z) is its asymptotic series (error < 1e-11)
+
+
+def _exp_e1(z: np.ndarray) -> np.ndarray:
+    """e^z E1(z) for Re z ≤ 0: scipy's product where |z| ≤ 40, the asymptotic series
+    Σ (−1)ⁿ n!/z^{n+1}, n ≤ 10 (Abramowitz & Stegun 5.1.51) beyond, where e^z underflows and
+    E1 overflows (deep points at high frequency: their product was 0 × inf = nan)."""
+    far = np.abs(z) > ASYMPTOTIC_E1
+    near = np.where(far, 1.0 + 0j, z)
+    out = np.exp(near) * exp1(near)
+    inverse = 1.0 / np.where(far, z, 1.0)
+    series = np.zeros_like(inverse)
+    term = inverse.copy()
+    for n in range(11):
+        series += term
+        term = term * (-(n + 1)) * inverse
+    return np.where(far, series, out)
 
 
 def _wave_part(X: np.ndarray, Y: np.ndarray, nu: float):
@@ -125,7 +148,7 @@ def _wave_part(X: np.ndarray, Y: np.ndarray, nu: float):
     w = Y + 1j * np.abs(X)
     z = nu * w
     z = np.where(np.abs(z) > 0.0, z, 1e-300 + 0j)
-    f = np.exp(z) * exp1(z)
+    f = _exp_e1(z)
     ey = np.exp(nu * Y)
     sin_x, cos_x = np.sin(nu * np.abs(X)), np.cos(nu * X)
     sgn = np.sign(X)

@@ -16,7 +16,8 @@ from floatfoam.dofs import NAMES
 class DofPotential:
     """One DoF with added mass (SI, about G): the natural period with added mass (s), the
     damping ratio from radiation, A and B at the natural frequency (rad/s) and the undamped
-    period without added mass; None where the DoF does not oscillate or is not solved."""
+    period without added mass; for roll (pitch) the period and damping ratio with sway
+    (surge) free as well; None where the DoF does not oscillate or is not solved."""
 
     period: float | None = None
     damping_ratio: float | None = None
@@ -24,6 +25,9 @@ class DofPotential:
     radiation_damping: float | None = None
     natural_frequency: float | None = None
     period_no_added_mass: float | None = None
+    # roll with sway free, pitch with surge free (resonance.condensed): what a free body does
+    coupled_period: float | None = None
+    coupled_damping_ratio: float | None = None
 
 
 @dataclass(frozen=True)
