@@ -58,8 +58,8 @@ potential: setup  ## added mass, radiation damping, periods with added mass of C
 decay-model: setup  ## free-decay series of CASE, MODEL=linear|nonlinear|cummins [DOFS=heave,roll]
 	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 $(FF) decay-model $(CASE) --model $(MODEL) $(if $(DOFS),--dofs $(DOFS)) $(SETARGS)
 
-bench-potential: setup  ## time mesh + BEM (no cache) for every case (target < 30 s per body)
-	$(PY) scripts/bench_potential.py --threads 1
+bench-potential: setup  ## median mesh + BEM time (no cache) per case, 3 runs (3D ≤ 30 s, 2D ≤ 2 s)
+	$(PY) scripts/bench_potential.py --threads $(or $(THREADS),2) $(CASES)
 
 mesh: setup  ## body STL + gmsh fluid domain of CASE at LEVEL (coarse|medium|fine|all), checked
 	$(FF) mesh body $(CASE) --level $(LEVEL) $(SETARGS)

@@ -68,8 +68,9 @@ def test_waterline_near_the_equator_meshes(case, density):
 
 
 def test_laboratory_sphere_heave_added_mass_against_hulme():
-    """The laboratory sphere of issue 13 (cases/lab_sphere: D 0.300 m, M 7.056 kg, G 34.8 mm below the centre,
-    ρ 998.2 kg/m³, g 9.82 m/s²), floating 0.02 mm from its equator, in deep water: its heave
+    """The laboratory sphere of issue 13 (cases/lab_sphere: D 0.300 m, M 7.056 kg, G 34.8 mm
+    below the centre, ρ 998.2 kg/m³, g 9.82 m/s²), floating 0.02 mm from its equator, in deep
+    water: its heave
     added mass at the natural frequency within 2 % of Hulme's (1982) hemisphere value,
     interpolated linearly in ka between the tabulated 1.0 and 2.0 (the table's curvature there
     is below 0.5 % of A; the constant-panel error is 0.1–0.5 %, test_potential)."""
