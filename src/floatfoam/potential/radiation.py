@@ -6,9 +6,9 @@
   constant panels on the wetted surface remeshed by :mod:`~floatfoam.potential.bem_mesh`
   (only the half or quarter of a symmetric hull, Capytaine rebuilding the rest by reflection), a
   lid on the interior waterplane (z = 0) for irregular-frequency removal, infinite or finite depth.
-* 2D sections: the panel method of :mod:`floatfoam.potential.sections` (per metre, deep water),
-  multiplied by the section's length L (strip theory without end effects, docs/conventions.md:
-  section quantities are for the length L).
+* 2D sections: the panel method of :mod:`floatfoam.potential.sections` (per metre; in finite
+  depth :mod:`floatfoam.potential.sections_depth`), multiplied by the section's length L (strip
+  theory without end effects, docs/conventions.md: section quantities are for the length L).
 
 Degrees of freedom (heave, roll, pitch, surge, sway: :data:`floatfoam.dofs.COUPLED`), rotations
 about the centre of gravity G at equilibrium, earth axes; surge and sway have no restoring but
@@ -30,9 +30,11 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam.dofs import COUPLED, NAMES
+from floatfoam.errors import InputError
 from floatfoam.potential import bem_mesh
 from floatfoam.potential import sections as section_bem
 from floatfoam.potential.bounded import Progress, run_bounded
+from floatfoam.potential.sections_depth import radiation_coefficients_2d_depth
 from floatfoam.potential.summary import DofPotential, PotentialSummary
 
 CACHE_VERSION = 3  # bump when the numerics change (2: surge and sway; 3: float32, deep at kh ≥ 6)
@@ -165,12 +167,16 @@ def capytaine_coefficients(vertices: np.ndarray, faces: np.ndarray, *, centre, o
 
 
 def section_coefficients(nodes: np.ndarray, *, centre_yz, omegas, length: float,
-                         rho: float = 1000.0, g: float = 9.81):
+                         rho: float = 1000.0, g: float = 9.81, depth: float = math.inf):
     """2D coefficients of a section (:mod:`floatfoam.potential.sections`) as (heave, roll, pitch,
     surge, sway) matrices for the length L: sway, heave and roll (about G) times L; pitch and
     surge rows are zero."""
-    res = section_bem.radiation_coefficients_2d(nodes, [*omegas, np.inf], centre=centre_yz,
-                                                rho=rho, g=g)
+    if math.isinf(depth):
+        res = section_bem.radiation_coefficients_2d(nodes, [*omegas, np.inf], centre=centre_yz,
+                                                    rho=rho, g=g)
+    else:
+        res = radiation_coefficients_2d_depth(nodes, [*omegas, np.inf], depth=depth,
+                                              centre=centre_yz, rho=rho, g=g)
     order = [COUPLED_INDEX[m] for m in section_bem.MODES]  # (sway, heave, roll) → matrix rows
     a = np.zeros((len(omegas) + 1, len(COUPLED), len(COUPLED)))
     b = np.zeros_like(a)
@@ -214,10 +220,11 @@ def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=N
         panels = int(panels or opts.panels or section_bem.DEFAULT_PANELS)
         nodes = bem_mesh.section_panels(body, eq.z_c, eq.heel, panels)
         half_beam = 0.5 * float(np.ptp(nodes[:, 0]))
-        depth = math.inf
-        if math.isfinite(case.depth):
-            notes.append(f"2D section: deep-water Green function, the depth {case.depth:g} m "
-                         "is not used (valid where ω²h/g ≳ π, see the resonance values)")
+        depth = case.depth
+        if math.isfinite(depth) and float(nodes[:, 1].min()) <= -depth:
+            raise InputError(f"fluid.depth = {depth:g} m: the section's keel is at "
+                             f"{float(nodes[:, 1].min()):.4g} m, on or below the bottom; valid "
+                             "is a depth greater than the draft")
         geometry = {"polygon": body.section_polygon(), "nodes": nodes}
         ell = half_beam
     else:
@@ -240,7 +247,7 @@ def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=N
             omegas = np.linspace(lowest, omegas[-1], len(omegas))
             notes.append(f"finite depth {depth:g} m: frequencies from kh = {MIN_KH:g} "
                          f"(ω = {lowest:.4g} rad/s), the lowest Capytaine evaluates")
-    import capytaine
+    from importlib.metadata import version  # not `import capytaine`: 0.5 s a section needs not
 
     from floatfoam import __version__
 
@@ -249,14 +256,15 @@ def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=N
                    "trim": round(eq.trim, 12), "panels": panels, "depth": depth,
                    "rho": case.rho, "g": case.g, "length": body.length,
                    "section": body.is_section, "cache": CACHE_VERSION,
-                   "capytaine": capytaine.__version__, "floatfoam": __version__})
+                   "capytaine": version("capytaine"), "floatfoam": __version__})
     path = (cache_dir or default_cache_dir()) / f"{key}.npz"
     if cache and path.is_file():
         data = np.load(path, allow_pickle=False)
         return _from_arrays(data, notes)
     if body.is_section:
         a, b, a_inf = section_coefficients(nodes, centre_yz=centre[1:], omegas=omegas,
-                                           length=body.length, rho=case.rho, g=case.g)
+                                           length=body.length, rho=case.rho, g=case.g,
+                                           depth=depth)
         count, method = len(nodes) - 1, "panel-2d"
         covered = tuple(d.name in section_bem.MODES for d in COUPLED)
     else:
@@ -370,9 +378,6 @@ def potential_summary(case, *, coefficients: RadiationCoefficients | None = None
             values.update(coupled_period=2 * math.pi / omega_c, coupled_damping_ratio=(
                 damping_ratio(mass[i, i], omega_c, float(np.interp(w, coef.omega, a_eff)),
                               float(np.interp(w, coef.omega, b_eff)))))
-        if math.isfinite(case.depth) and coef.method == "panel-2d":
-            notes.append(f"{dof}: ω²h/g = {omega_n**2 * case.depth / case.g:.3g} at "
-                         "resonance (deep water holds within 0.4 % above π)")
     for i, j in ((0, 1), (0, 2), (1, 2)):
         if coef.covered[i] and coef.covered[j]:
             ratios = [abs(m[i, j]) / math.sqrt(abs(m[i, i] * m[j, j]) or 1.0)

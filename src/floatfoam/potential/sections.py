@@ -132,15 +132,19 @@ def _exp_e1(z: np.ndarray) -> np.ndarray:
     Σ (−1)ⁿ n!/z^{n+1}, n ≤ 10 (Abramowitz & Stegun 5.1.51) beyond, where e^z underflows and
     E1 overflows (deep points at high frequency: their product was 0 × inf = nan)."""
     far = np.abs(z) > ASYMPTOTIC_E1
-    near = np.where(far, 1.0 + 0j, z)
-    out = np.exp(near) * exp1(near)
-    inverse = 1.0 / np.where(far, z, 1.0)
+    if not far.any():
+        return np.exp(z) * exp1(z)
+    out = np.empty_like(z)
+    near = ~far
+    out[near] = np.exp(z[near]) * exp1(z[near])
+    inverse = 1.0 / z[far]
     series = np.zeros_like(inverse)
     term = inverse.copy()
     for n in range(11):
         series += term
         term = term * (-(n + 1)) * inverse
-    return np.where(far, series, out)
+    out[far] = series
+    return out
 
 
 def _wave_part(X: np.ndarray, Y: np.ndarray, nu: float):
