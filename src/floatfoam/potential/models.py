@@ -92,7 +92,7 @@ def decay_series(case, model: str, *, duration: float | None = None, dt: float |
 
         x, v = linear_decay(mass, stiffness, x0, t)
     else:
-        x, v, a_inf, chosen = _cummins(case, eq, g_pos, mass, stiffness, x0, t,
+        x, v, a_inf, chosen = _cummins(case, eq, g_pos, stiffness, x0, t,
                                        nonlinear_restoring, coefficients, dofs)
         out.update(added_mass_inf=a_inf, dofs=[d.name for d in chosen],
                    x=g_pos[0] + x[:, 3], y=g_pos[1] + x[:, 4], u=v[:, 3], v=v[:, 4])
@@ -120,8 +120,7 @@ def refuse_capsizing(case, eq, stiffness, model: str) -> None:
                              "stable attitude)")
 
 
-def _cummins(case, eq, g_pos, mass, stiffness, x0, t, nonlinear_restoring, coefficients,
-             dofs):
+def _cummins(case, eq, g_pos, stiffness, x0, t, nonlinear_restoring, coefficients, dofs):
     """Cummins' equation in the chosen DoFs; returns (x, v) in all five (heave, roll, pitch,
     surge, sway; the others zero), A∞ of the chosen ones and the chosen DoFs."""
     from floatfoam.potential.radiation import radiation_coefficients
