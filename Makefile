@@ -36,7 +36,7 @@ $(CFD_CASES): setup
 	$(FF) run $@ --level $(LEVEL) --np $(NP) $(SETARGS)
 
 test: setup  ## all tests: unit tests and the coarse OpenFOAM regression runs
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q --durations=15  # the slowest fifteen: make test must stay ≤ 20 min on 2 cores
 
 test-fast: setup  ## unit tests only (no solver runs)
 	$(PY) -m pytest -q -m "not openfoam and not slow"
