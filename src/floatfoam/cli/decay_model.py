@@ -21,7 +21,8 @@ def register(sub) -> None:
     p.add_argument("--duration", type=float, default=None, metavar="S",
                    help="simulated time in s (default ten of the longest linear period)")
     p.add_argument("--out", default=None, metavar="CSV",
-                   help="motion CSV to write (default build/<case>/decay_<model>.csv)")
+                   help="motion CSV to write (default build/<case>/decay_<model>.csv, "
+                        "with _<dofs> when --dofs is given)")
     p.add_argument("--nonlinear-restoring", action="store_true",
                    help="cummins: exact hydrostatic restoring instead of C x")
     p.add_argument("--dofs", default=None, metavar="LIST",
@@ -44,7 +45,8 @@ def run(args) -> int:
     case = load_case(args.case, args.overrides)
     series = decay_series(case, args.model, duration=args.duration,
                           nonlinear_restoring=args.nonlinear_restoring, dofs=chosen)
-    suffix = "_nonlinear_restoring" if args.nonlinear_restoring else ""
+    suffix = ("_nonlinear_restoring" if args.nonlinear_restoring else "") + (
+        "_" + "-".join(d.name for d in chosen) if chosen else "")  # e.g. _heave-roll
     out = Path(args.out) if args.out else \
         layout.case_build_dir(case.name) / f"decay_{args.model}{suffix}.csv"
     write_series(out, series)
