@@ -54,6 +54,7 @@ HORIZONTAL = (
     Dof("sway", "", "y", "m", "y_G", 4, "kg", "N·s/m"),
 )
 COUPLED = DOFS + HORIZONTAL  # the order of the potential-flow matrices (heave … sway)
+PARTNER = {"roll": "sway", "pitch": "surge"}  # the horizontal DoF that follows each rotation
 NAMES = tuple(d.name for d in DOFS)
 COUPLED_NAMES = tuple(d.name for d in COUPLED)
 RELEASE_KEYS = tuple(d.release_key for d in DOFS)
@@ -81,7 +82,7 @@ def free_dofs(release: dict, *, axisymmetric: bool = False) -> list[Dof]:
     trim = float(release.get("trim", 0.0) or 0.0) != 0.0
     names = ["heave"]
     if not axisymmetric:
-        names += ["roll", "sway"] * heel + ["pitch", "surge"] * trim
+        names += ["roll", PARTNER["roll"]] * heel + ["pitch", PARTNER["pitch"]] * trim
     return sorted((_BY_NAME[n] for n in names), key=lambda d: d.index)
 
 

@@ -185,7 +185,7 @@ def _theory_rows(case, dof, theory, potential):
         rows.append(_row(case.name, dof, "potential flow", float(flow.period),
                          zeta=_optional(flow.damping_ratio), note=method))
     if flow is not None and flow.coupled_period is not None:
-        partner = {"roll": "sway", "pitch": "surge"}[dof]
+        partner = dofs.PARTNER[dof]
         rows.append(_row(case.name, dof, f"potential flow, {partner} free",
                          float(flow.coupled_period), zeta=_optional(flow.coupled_damping_ratio),
                          note=f"a free body, as in the CFD ({partner} follows the {dof})"))

@@ -64,11 +64,11 @@ def format_summary(s: dict) -> str:
                      f"{_fmt(s[f'{dof}_period']):>13} {_fmt(s[f'{dof}_added_mass']):>11} "
                      f"{_fmt(s[f'{dof}_radiation_damping']):>11} "
                      f"{_fmt(s[f'{dof}_damping_ratio'], 4):>8}  {unit_a}, {unit_b}")
-    for entry, partner in ((dofs.dof("roll"), "sway"), (dofs.dof("pitch"), "surge")):
-        if s.get(f"{entry.name}_coupled_period") is not None:
-            lines.append(f"{entry.name} with {partner} free (a free body): period "
-                         f"{s[f'{entry.name}_coupled_period']:.5g} s, ζ "
-                         f"{s[f'{entry.name}_coupled_damping_ratio']:.4g}")
+    for dof, partner in dofs.PARTNER.items():
+        if s.get(f"{dof}_coupled_period") is not None:
+            lines.append(f"{dof} with {partner} free (a free body): period "
+                         f"{s[f'{dof}_coupled_period']:.5g} s, ζ "
+                         f"{s[f'{dof}_coupled_damping_ratio']:.4g}")
     lines.append("— : the DoF does not oscillate (or, pitch of a 2D section, is not solved)")
     lines += [f"note: {n}" for n in s["notes"]]
     if "plot" in s:

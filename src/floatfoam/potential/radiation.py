@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam.dofs import COUPLED, NAMES
+from floatfoam.dofs import COUPLED, NAMES, PARTNER
 from floatfoam.errors import InputError
 from floatfoam.potential import bem_mesh
 from floatfoam.potential import sections as section_bem
@@ -43,8 +43,6 @@ OMEGA_MAX_ND = 2.5  # wave length 2πℓ/2.5² ≈ ℓ: ≈ 7 panels per wave le
 FREQUENCIES = 32
 COUPLING_NOTE = 0.05  # off-diagonal / √(diagonal product) above which a note says so
 COUPLED_INDEX = {d.name: d.index for d in COUPLED}
-# the horizontal DoF a free body moves in with each rotation (no restoring: it follows)
-HORIZONTAL_PARTNER = {"roll": COUPLED_INDEX["sway"], "pitch": COUPLED_INDEX["surge"]}
 MIN_KH = 0.15  # Capytaine's finite-depth Green function (Prony fit) fails below kh ≈ 0.1–0.15
 # Capytaine's Green function in single precision: every A and B within 7e-7 (relative) of
 # double precision on the sphere at kh = 0.15, 1 and ∞, the assembly ~20 % and the LU ~3×
@@ -369,7 +367,7 @@ def potential_summary(case, *, coefficients: RadiationCoefficients | None = None
         values.update(period=2 * math.pi / omega_n, natural_frequency=omega_n, added_mass=a_n,
                       radiation_damping=b_n,
                       damping_ratio=damping_ratio(mass[i, i], omega_n, a_n, b_n))
-        partner = HORIZONTAL_PARTNER.get(dof)
+        partner = COUPLED_INDEX[PARTNER[dof]] if dof in PARTNER else None
         if partner is not None and coef.covered[partner]:
             a_eff, b_eff = condensed(coef.omega, mass_all, coef.added_mass, coef.damping,
                                      i, [partner])
