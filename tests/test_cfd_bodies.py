@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from floatfoam.analysis.decay import analyse_decay, decay_dict
+from floatfoam.analysis.extrema import first_extrema, period_from_extrema
 from floatfoam.case import load_case
 from floatfoam.dofs import dof
 from floatfoam.foam.driver import run_case
@@ -63,18 +64,18 @@ def potential_period(case, name: str) -> float:
 
 def extrema(t, x, count: int):
     """Times of the first ``count`` extrema of a smooth record (sign changes of its slope)."""
-    slope = np.diff(x)
-    turns = np.nonzero(np.sign(slope[1:]) != np.sign(slope[:-1]))[0] + 1
+    turns = first_extrema(x, count)
     assert len(turns) >= count, f"only {len(turns)} extrema"
-    return t[turns[:count]]
+    return t[turns]
 
 
 def early_period(t, x, count: int = 4) -> float:
-    """The period from the first ``count`` extrema: twice their mean spacing. A heavily damped
-    record (ζ ≈ 0.2) leaves the noise after 1.5 cycles, too few for the decay fit; the extrema
-    still time its first cycles."""
-    times = extrema(t, x, count)
-    return 2.0 * (times[-1] - times[0]) / (count - 1)  # extrema are half a period apart
+    """The period from the first ``count`` extrema (analysis.extrema). A heavily damped record
+    (ζ ≈ 0.2) leaves the noise after 1.5 cycles, too few for the decay fit; the extrema still
+    time its first cycles."""
+    turns = first_extrema(x, count)
+    assert len(turns) >= count, f"only {len(turns)} extrema"
+    return period_from_extrema(t, turns)
 
 
 def first_sway(t, y, period: float) -> float:

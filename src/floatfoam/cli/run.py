@@ -118,12 +118,11 @@ def _dof_summary(d, motion, theory) -> None:
 def _early_period(d, t, x) -> None:
     """A record too damped (or too short) for the decay fit: its first extrema, and the period
     they give (twice their mean spacing), which is what a strongly radiating section offers."""
-    import numpy as np
+    from floatfoam.analysis.extrema import first_extrema, period_from_extrema
 
-    slope = np.diff(x)
-    turns = (np.nonzero(np.sign(slope[1:]) != np.sign(slope[:-1]))[0] + 1)[:4]
+    turns = first_extrema(x, 4)
     if len(turns) < 2:
         return
-    period = 2.0 * float(t[turns[-1]] - t[turns[0]]) / (len(turns) - 1)
+    period = period_from_extrema(t, turns)
     marks = ", ".join(f"{t[k]:.3f} s ({x[k] * d.file_scale:+.4g} {d.unit})" for k in turns)
     print(f"  its first extrema: {marks}; period from them {period:.4f} s")
