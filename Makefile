@@ -19,7 +19,7 @@ export MPLBACKEND := Agg
 CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cylinder_capsize \
 	parabolic_cylinder hyperbolic_cylinder box_bilge box_bilge_heave sphere sphere_25mm sphere_50mm \
 	ellipsoid_roll stl_pontoon
-.PHONY: $(CFD_CASES) help setup run test mesh mesh-table test-fast lint theory gz potential decay-model report bench-theory bench-potential bench-cfd clean
+.PHONY: $(CFD_CASES) help setup run test mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures bench-theory bench-potential bench-cfd clean
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
@@ -70,6 +70,9 @@ mesh-table: setup  ## mesh levels table (Markdown) of every case, with checkMesh
 
 report: setup  ## gather every case (theory, potential flow, finished CFD runs) into build/report/
 	$(FF) report
+
+validate: setup  ## grid + time-step convergence (GCI) of CASE: coarse, medium, fine, fine with dt/2
+	$(FF) validate $(CASE) --np $(NP) $(SETARGS)
 
 bench-cfd: setup  ## every CFD case, 1 s simulated (FULL=1: whole records): cells, steps, wall, 1 vs 2 ranks
 	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2 $(if $(CASES),--cases $(CASES)) \

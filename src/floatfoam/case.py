@@ -116,6 +116,15 @@ def load_case(name_or_path: str, overrides=()) -> Case:
     return _build(folder, merged)
 
 
+def with_overrides(case: Case, overrides) -> Case:
+    """The same case with more ``table.key=value`` applied (a time-step study's smaller
+    steps, say), validated as a loaded case is."""
+    raw = copy.deepcopy(case.raw)
+    for item in overrides:
+        apply_override(raw, item)
+    return _build(case.path, raw)
+
+
 def _read_toml(folder: Path, seen: list[Path]) -> dict:
     """The case file of ``folder``, with the tables of the case it ``extends`` beneath it
     (table by table: a key it sets replaces the base's)."""

@@ -5,6 +5,9 @@
     cases/<case>/case.toml            a case (folders starting with ``_`` are shared material)
     cases/_common/                    OpenFOAM dictionaries every run starts from
     <build>/<case>/<level>/           the run directory of a case at a mesh level
+    <build>/<case>/<level>-dt<k>/     the same with its time steps divided by k (a time-step
+                                      study: ``floatfoam validate``)
+    <build>/<case>/validation/        the grid and time-step convergence study of the case
     <build>/<case>/<level>/.floatfoam/<step>.done
                                       the driver's step markers; ``finished.done`` marks a
                                       finished run (only those reach the comparison and report)
@@ -50,9 +53,17 @@ def case_build_dir(case_name: str, build: Path | None = None) -> Path:
     return Path(build or build_dir()) / case_name
 
 
-def run_dir(case_name: str, level: str, build: Path | None = None) -> Path:
-    """The run directory of a case at a mesh level: ``<build>/<case>/<level>``."""
-    return case_build_dir(case_name, build) / level
+def run_name(level: str, time_step_divisor: int = 1) -> str:
+    """A run's folder name: its mesh level, followed by ``-dt<k>`` when its time steps are
+    those of the level divided by k (the time-step study of ``floatfoam validate``)."""
+    return level if time_step_divisor == 1 else f"{level}-dt{time_step_divisor}"
+
+
+def run_dir(case_name: str, level: str, build: Path | None = None, *,
+            time_step_divisor: int = 1) -> Path:
+    """The run directory of a case at a mesh level: ``<build>/<case>/<level>`` (and
+    ``<level>-dt<k>`` with its time steps divided by k)."""
+    return case_build_dir(case_name, build) / run_name(level, time_step_divisor)
 
 
 def list_cases(cases_dir: Path | None = None) -> list[Path]:

@@ -11,7 +11,12 @@ trim → heave, roll, pitch) or lists a reference for:
 * **CFD <level>**: each ``build/<case>/<level>/motion.csv``, through :func:`analyse_decay`.
   The period is the damped period T_d of the record (what a decay test measures; the natural
   period T_n = T_d √(1 − ζ²) is in the note) with its 95 % interval;
-* **reference**: the measured value of the case's ``[reference]`` table (value ± uncertainty).
+* **CFD extrapolated**: the Richardson extrapolation of the three levels ± the numerical
+  uncertainty of the fine one (grid and time step), when ``floatfoam validate`` has studied it;
+* **reference**: the measured value of the case's ``[reference]`` table (value ± uncertainty);
+* **<dof>, first 3 cycles**: when the reference gives the first cycles of a measured record
+  (``<dof>_first_period``, ``_first_damping_ratio``, ``_first_trough``), each CFD record
+  reduced the same way (:func:`floatfoam.analysis.extrema.crossing_reduction`).
 
 Relative differences are taken against the reference where the case has one, else against the
 exact linear theory (periods only: the theory has no damping). A CFD record that cannot be
@@ -192,6 +197,70 @@ def _theory_rows(case, dof, theory, potential):
     return rows
 
 
+def _extrapolated_row(case, dof, build_dir):
+    """The CFD's Richardson-extrapolated period and damping ratio ± the fine level's numerical
+    uncertainty U_num (grid and time step: ``floatfoam validate``), when studied."""
+    from floatfoam.analysis.validation import extrapolated, read_study
+
+    study = read_study(case.name, Path(build_dir))
+    if study is None:
+        return None
+    period, zeta = extrapolated(study, dof, "period"), extrapolated(study, dof, "damping_ratio")
+    if period is None and zeta is None:
+        return None
+
+    def interval(entry):
+        return None if entry is None else [entry[0] - entry[1], entry[0] + entry[1]]
+
+    return _row(case.name, dof, "CFD extrapolated", period and period[0], interval(period),
+                zeta and zeta[0], interval(zeta),
+                "Richardson extrapolation of coarse/medium/fine ± U_num (floatfoam validate)")
+
+
+def _first_cycle_rows(case, dof, runs, reference, build_dir) -> list[dict]:
+    """The first cycles of each CFD record reduced as the case's reference reduces its
+    measurements (:func:`floatfoam.analysis.extrema.crossing_reduction`: the first period
+    from the first trough's zero crossings, ζ over the first six extrema, the first trough),
+    beside ``[reference] <dof>_first_period``, ``<dof>_first_damping_ratio`` and
+    ``<dof>_first_trough`` — only when the reference has them."""
+    from floatfoam.analysis.extrema import crossing_reduction
+    from floatfoam.analysis.validation import extrapolated, read_study
+
+    keys = [f"{dof}_first_{k}" for k in ("period", "damping_ratio", "trough")]
+    period, zeta, trough = (reference_entry(reference, k) for k in keys)
+    if period is None and zeta is None:
+        return []
+    label, (scale, unit) = f"{dof}, first 3 cycles", file_unit(dof)
+    rows = []
+    for level, path in runs:
+        try:
+            time, value, decay = analyse_run(path, dof)
+            r = crossing_reduction(time, value, level=float(decay.fit.mean_level(time[-1])))
+        except (ValueError, InputError) as err:
+            rows.append(_row(case.name, label, f"CFD {level}", note=f"analysis failed: {err}"))
+            continue
+        rows.append(_row(case.name, label, f"CFD {level}", r.first_period,
+                         zeta=r.damping_ratio,
+                         note=f"first trough {r.first_trough * scale:.4g} {unit}"))
+    study = read_study(case.name, Path(build_dir))
+    ext = extrapolated(study, dof, "first_period") if study else None
+    if ext is not None:
+        rows.append(_row(case.name, label, "CFD extrapolated", ext[0],
+                         [ext[0] - ext[1], ext[0] + ext[1]], note="± U_num (floatfoam validate)"))
+
+    def interval(entry):
+        return None if entry is None or entry[1] is None else \
+            [entry[0] - entry[1], entry[0] + entry[1]]
+
+    notes = [f"first trough {trough[0] * scale:.4g} {unit}"
+             + (f" ± {trough[1] * scale:.2g}" if trough[1] else "")] if trough else []
+    sources = sorted({e[2] for e in (period, zeta, trough) if e is not None and e[2]})
+    rows.append(_row(case.name, label, "reference", period and period[0], interval(period),
+                     zeta and zeta[0], interval(zeta), "; ".join(notes + sources)))
+    _relative_differences(rows)
+    return rows
+
+
 def _reference_row(case, dof, reference):
     period = reference_entry(reference, f"{dof}_period")
     zeta = reference_entry(reference, f"{dof}_damping_ratio")
@@ -250,12 +319,16 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
         rows = _theory_rows(case, dof, theory, potential)
         cfd_rows, analyses = _cfd_rows(case, dof, runs, theory, analysis_options or {})
         rows += cfd_rows
+        extrapolated = _extrapolated_row(case, dof, build_dir)
+        if extrapolated is not None:
+            rows.append(extrapolated)
         comparison.analyses += analyses
         ref_row = _reference_row(case, dof, reference)
         if ref_row is not None:
             rows.append(ref_row)
         _relative_differences(rows)
         comparison.rows += rows
+        comparison.rows += _first_cycle_rows(case, dof, runs, reference, build_dir)
     return comparison
 
 

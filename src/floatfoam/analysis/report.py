@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import csv
 import datetime
+import shutil
 import subprocess
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -195,7 +196,34 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
         doc.heading("Decay records", 3)
         for src, alt in images:
             doc.image(src, alt)
+    _validation_section(doc, case.name, build_dir, out_dir)
     return [case.name, title or "—", _periods_cell(theory), _status(comparison)]
+
+
+def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir: Path) -> None:
+    """The grid and time-step study of ``floatfoam validate``, when it has been run."""
+    from floatfoam.analysis.validation import (
+        GCI_HEADER,
+        METHOD,
+        RUNS_HEADER,
+        read_study,
+        study_tables,
+    )
+
+    study = read_study(case_name, build_dir)
+    if study is None:
+        return
+    doc.heading("Grid and time-step convergence", 3)
+    for dof, runs, rows in study_tables(study):
+        doc.paragraph(f"{dof}:")
+        doc.table(RUNS_HEADER, runs)
+        doc.table(GCI_HEADER, rows)
+    doc.paragraph(METHOD, note=True)
+    figure = layout.case_build_dir(case_name, build_dir) / "validation" / "convergence.png"
+    if figure.is_file():
+        name = f"{case_name}/convergence.png"
+        shutil.copyfile(figure, out_dir / name)
+        doc.image(name, f"{case_name} grid and time-step convergence")
 
 
 def _periods_cell(theory: TheorySummary) -> str:

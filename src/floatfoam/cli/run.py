@@ -22,6 +22,9 @@ def register(sub) -> None:
                    help="Open MPI hostfile for the ranks (default: this machine)")
     p.add_argument("--force", action="store_true",
                    help="move an earlier run of this case and level aside and run anew")
+    p.add_argument("--dt-divisor", type=int, default=1, metavar="K",
+                   help="divide the level's time-step limits (largest step, Courant numbers) "
+                        "by K: a time-step study, run in <level>-dt<K> (default 1)")
     p.set_defaults(func=run)
 
 
@@ -41,7 +44,7 @@ def run(args) -> int:
             raise InputError(f"--level {args.level!r}: valid levels are {', '.join(LEVELS)}")
         eq = equilibrium(case)  # solved once, handed to the rendering and the summary
         result = run_case(case, args.level, args.np, args.force, equilibrium=eq,
-                          hostfile=args.hostfile)
+                          hostfile=args.hostfile, time_step_divisor=args.dt_divisor)
     except RunError as err:
         _say(f"floatfoam run: {err}")
         return 1

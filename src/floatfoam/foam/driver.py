@@ -44,8 +44,12 @@ class RunResult:
 
 def settings_digest(case: Case, level: str) -> str:
     """Hash of what a run depends on: the case, the level, the shared dictionaries and the
-    solver binary."""
-    digest = hashlib.sha256(json.dumps({"case": case.raw, "level": level}, sort_keys=True,
+    solver binary. Not the case's words ([case] title and description) nor its [reference]
+    measurements: adding a measurement must not make a finished run look foreign."""
+    raw = {table: values for table, values in case.raw.items() if table != "reference"}
+    raw["case"] = {k: v for k, v in raw.get("case", {}).items()
+                   if k not in ("title", "description")}
+    digest = hashlib.sha256(json.dumps({"case": raw, "level": level}, sort_keys=True,
                                        default=str).encode())
     for path in sorted(layout.COMMON_DIR.rglob("*")):
         if path.is_file():
@@ -65,9 +69,9 @@ def solver_path(case: Case) -> Path:
 
 
 def prepare(case: Case, level: str, np_: int, force: bool,
-            build_dir: Path | None = None) -> tuple[Path, bool, bool]:
+            build_dir: Path | None = None, divisor: int = 1) -> tuple[Path, bool, bool]:
     """The run directory, whether it resumes, and whether it is already finished."""
-    run_dir = layout.run_dir(case.name, level, build_dir)
+    run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor)
     digest = settings_digest(case, level)
     stamp = run_dir / layout.MARKERS / "settings"
     if run_dir.exists():
@@ -76,7 +80,7 @@ def prepare(case: Case, level: str, np_: int, force: bool,
         same = old[0] == digest and old[1] == str(np_)
         if force:
             moved = runner.move_aside(run_dir)
-            print(f"[{case.name}/{level}] earlier run moved to {moved}")
+            print(f"[{case.name}/{run_dir.name}] earlier run moved to {moved}")
         elif finished and same:
             return run_dir, False, True
         elif finished or not same:
@@ -92,13 +96,16 @@ def prepare(case: Case, level: str, np_: int, force: bool,
 
 def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = False,
              build_dir: Path | None = None, *, equilibrium: Equilibrium | None = None,
-             hostfile: Path | None = None) -> RunResult:
+             hostfile: Path | None = None, time_step_divisor: int = 1) -> RunResult:
     """Run ``case`` at ``level`` on ``np_`` MPI ranks (see the module docstring); the run
     directory is ``<build_dir>/<case>/<level>`` (:func:`floatfoam.layout.build_dir` by
     default). ``equilibrium`` is the case's (solved here when not given); ``hostfile`` goes to
-    mpirun. Everything is checked before anything is written; the run holds the run
-    directory's lock (:mod:`floatfoam.foam.runlock`) from start to end."""
+    mpirun. ``time_step_divisor`` k > 1 divides the level's time-step limits (largest step,
+    Courant numbers) by k, in ``<level>-dt<k>``: a time-step study. Everything is checked
+    before anything is written; the run holds the run directory's lock
+    (:mod:`floatfoam.foam.runlock`) from start to end."""
     check_ranks(np_, hostfile)
+    case = smaller_steps(case, time_step_divisor)
     solver_path(case)  # refused before anything is done when missing
     if equilibrium is None:
         from floatfoam.hydrostatics.theory import equilibrium as solve
@@ -108,25 +115,42 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     local = hostfile is None
     mesh = domain.plan(case, level, state["pose"], local=local)  # bad input fails here
     end_time_of(case)
-    label = f"{case.name}/{level}"
-    target = layout.run_dir(case.name, level, build_dir)
+    name = layout.run_name(level, time_step_divisor)
+    label = f"{case.name}/{name}"
+    target = layout.run_dir(case.name, level, build_dir, time_step_divisor=time_step_divisor)
     runner.check_path(target)
     with tempfile.TemporaryDirectory(prefix="floatfoam-mesh-") as scratch:
         if mesh.mesher == "gmsh" and (force or not layout.step_done(target, "render")):
             print(f"[{label}] gmsh: meshing the {mesh.kind} domain", file=sys.stderr)
             mesh = domain.generate(mesh, case, level, equilibrium, Path(scratch), local=local)
-        with RunLock(lock_path(case.name, level, build_dir), label) as lock:
+        with RunLock(lock_path(case.name, name, build_dir), label) as lock:
             if lock.stale_holder():
                 print(f"[{label}] the run of PID {lock.stale_holder()} ended without "
                       "finishing; this run takes its place", file=sys.stderr)
             return _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh,
-                               lock, label)
+                               lock, label, time_step_divisor)
+
+
+def smaller_steps(case: Case, divisor: int) -> Case:
+    """The case with its time-step limits (run.max_delta_t, run.max_courant and
+    run.max_alpha_courant) divided by ``divisor``, a whole number ≥ 1."""
+    if isinstance(divisor, bool) or not isinstance(divisor, int) or divisor < 1:
+        raise InputError(f"--dt-divisor {divisor!r}: valid is a whole number ≥ 1")
+    if divisor == 1:
+        return case
+    from floatfoam.case import with_overrides
+
+    run = case.settings.run
+    limits = {"max_delta_t": run.max_delta_t, "max_courant": run.max_courant,
+              "max_alpha_courant": run.max_alpha_courant}
+    return with_overrides(case, [f"run.{key}={value / divisor!r}"
+                                 for key, value in limits.items() if value is not None])
 
 
 def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
-                label) -> RunResult:
+                label, divisor=1) -> RunResult:
     """The steps of :func:`run_case`, under the run directory's lock."""
-    run_dir, resumed, finished = prepare(case, level, np_, force, build_dir)
+    run_dir, resumed, finished = prepare(case, level, np_, force, build_dir, divisor)
     motion = run_dir / "motion.csv"
     info_file = run_dir / layout.MARKERS / "info.json"
     if finished:

@@ -1,0 +1,224 @@
+"""Verification of a case's CFD: grid and time-step convergence of its period and damping.
+
+``floatfoam validate CASE`` runs the case at the three mesh levels and once more at the fine
+level with its time steps halved (:data:`STUDY`); this module analyses those four runs. For
+each DoF the release excites and each quantity (:data:`QUANTITIES`: the damped period of the
+whole record, the first period — twice the first trough's time between zero crossings,
+:func:`floatfoam.analysis.extrema.crossing_reduction` — and the damping ratio) it gives
+
+* the grid study of Celik et al. (2008) on coarse, medium, fine (:mod:`floatfoam.analysis.gci`:
+  observed order, Richardson extrapolation, GCI_fine — or the word for how it fails to
+  converge), the cell size of each level from its cell count (their eq. 1: d = 2 for a slab or
+  a wedge one cell thick, 3 in 3D);
+* the time-step study: the fine level against the same with its time steps halved, Roache's
+  two-grid GCI with the first order of the Euler time scheme (cases/_common/system/fvSchemes);
+* the numerical uncertainty of the fine solution, U_num = √(GCI_grid² + GCI_time²) (the two
+  estimates taken as independent, the root-sum-square of ITTC 7.5-03-01-01 (2017), the
+  procedure for uncertainty analysis in CFD verification and validation).
+
+Written to ``<build>/<case>/validation/``: ``validation.json`` (every number),
+``validation.md`` (the table) and ``convergence.png`` (each quantity against the cell size,
+with the extrapolated value and the GCI band); ``floatfoam report`` gathers them.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from floatfoam import layout
+from floatfoam.analysis import gci
+from floatfoam.analysis.compare import analyse_run, excited_dofs
+from floatfoam.analysis.extrema import crossing_reduction
+from floatfoam.errors import InputError
+from floatfoam.motion import dof_series, read_motion
+
+#: (mesh level, time-step divisor) of the four runs, in the order they are run
+STUDY = (("coarse", 1), ("medium", 1), ("fine", 1), ("fine", 2))
+TIME_STEP_DIVISOR = 2
+TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
+#: key, label, unit (None: the DoF's own time unit, s)
+QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
+              ("first_period", "first period (first trough's crossings)", "s"),
+              ("damping_ratio", "damping ratio ζ", ""))
+
+
+@dataclass
+class RunValues:
+    """One run of the study: its folder name, cells, and the quantities of one DoF."""
+
+    name: str
+    cells: int | None
+    dimension: int
+    values: dict = field(default_factory=dict)  # key of QUANTITIES → value (None: failed)
+    note: str = ""
+
+
+def study_runs(case_name: str, build: Path) -> list[tuple[str, Path]]:
+    """(name, run directory) of the study's runs that are finished."""
+    out = []
+    for level, divisor in STUDY:
+        run = layout.run_dir(case_name, level, build, time_step_divisor=divisor)
+        if layout.is_finished(run) and (run / "motion.csv").is_file():
+            out.append((layout.run_name(level, divisor), run))
+    return out
+
+
+def _run_values(name: str, run: Path, dof: str) -> RunValues:
+    info_file = run / layout.MARKERS / "info.json"
+    info = json.loads(info_file.read_text()) if info_file.is_file() else {}
+    dimension = 3 if str(info.get("mesh", "")).startswith("3d") else 2
+    out = RunValues(name, info.get("cells"), dimension)
+    try:
+        _, _, result = analyse_run(run / "motion.csv", dof)
+    except InputError as err:
+        out.note = f"analysis failed: {err}"
+        out.values = dict.fromkeys(k for k, _, _ in QUANTITIES)
+        return out
+    s = result.summary()
+    time, value = dof_series(read_motion(run / "motion.csv"), dof)
+    try:
+        level = float(result.fit.mean_level(time[-1]))  # five periods do not settle
+        first = crossing_reduction(time, value, level=level).first_period
+    except ValueError:
+        first = None
+    out.values = {"period": s["period_mean"], "first_period": first,
+                  "damping_ratio": s["damping_ratio"]}
+    out.note = f"{s['n_cycles']:.1f} cycles"
+    return out
+
+
+def grid_study(runs: dict[str, RunValues], key: str) -> gci.GridConvergence | str:
+    """Celik et al.'s procedure on one quantity; a sentence when it cannot be applied."""
+    levels = [runs.get(level) for level in ("fine", "medium", "coarse")]
+    if any(r is None for r in levels):
+        return "needs the three levels finished"
+    values = [r.values.get(key) for r in levels]
+    if any(v is None or not math.isfinite(v) for v in values):
+        return "a level's record could not be analysed"
+    if any(not r.cells for r in levels):
+        return "a level's cell count is unknown"
+    h = [gci.cell_size(r.cells, r.dimension) for r in levels]
+    if not (h[0] < h[1] < h[2]):
+        return f"the cell sizes do not grow from fine to coarse ({h})"
+    return gci.three_grids(*values, h[1] / h[0], h[2] / h[1])
+
+
+def time_study(runs: dict[str, RunValues], key: str) -> gci.TwoLevel | str:
+    fine, halved = runs.get("fine"), runs.get(layout.run_name("fine", TIME_STEP_DIVISOR))
+    if fine is None or halved is None:
+        return "needs the fine level and its halved time step finished"
+    a, b = halved.values.get(key), fine.values.get(key)
+    if a is None or b is None:
+        return "a record could not be analysed"
+    return gci.two_level(a, b, TIME_STEP_DIVISOR, TIME_ORDER)
+
+
+def numerical_uncertainty(grid, time) -> float | None:
+    """U_num = √(GCI_grid² + GCI_time²) of the fine solution, a fraction (None: unknown)."""
+    g = grid.gci_fine if isinstance(grid, gci.GridConvergence) else None
+    t = time.gci_fine if isinstance(time, gci.TwoLevel) else None
+    return None if g is None or t is None else math.hypot(g, t)
+
+
+def validate_case(case, build: Path | None = None) -> dict:
+    """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict."""
+    build = Path(build or layout.build_dir())
+    found = study_runs(case.name, build)
+    study = {"case": case.name, "runs": [name for name, _ in found], "dofs": {},
+             "time_order": TIME_ORDER, "time_step_divisor": TIME_STEP_DIVISOR}
+    for dof in excited_dofs(case, {}):
+        runs = {name: _run_values(name, run, dof) for name, run in found}
+        entry = {"runs": {name: {"cells": r.cells, "dimension": r.dimension, **r.values,
+                                 "note": r.note} for name, r in runs.items()},
+                 "quantities": {}}
+        for key, _, _ in QUANTITIES:
+            grid, time = grid_study(runs, key), time_study(runs, key)
+            entry["quantities"][key] = {
+                "grid": grid.as_dict() if not isinstance(grid, str) else {"note": grid},
+                "time": time.as_dict() if not isinstance(time, str) else {"note": time},
+                "uncertainty": numerical_uncertainty(grid, time)}
+        study["dofs"][dof] = entry
+    return study
+
+
+def _num(value, spec=".5g") -> str:
+    return "—" if value is None else format(value, spec)
+
+
+def _pct(value) -> str:
+    return "—" if value is None else f"{100 * value:.2g} %"
+
+
+RUNS_HEADER = ("run", "cells", *(label for _, label, _ in QUANTITIES), "note")
+GCI_HEADER = ("quantity", "convergence", "order p", "extrapolated", "e_a21", "GCI_fine (grid)",
+              "Δ with dt/2", "GCI (time)", "U_num")
+METHOD = ("Grid study: Celik et al. (2008), J. Fluids Eng. 130:078001 (cell size from the cell "
+          "count, safety factor 1.25). Time: the fine level against its time steps halved, "
+          "Roache's two-grid GCI (F_s = 3, first order). U_num = √(GCI_grid² + GCI_time²).")
+
+
+def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]]]]:
+    """Per DoF: the rows of the runs table (RUNS_HEADER) and of the GCI table (GCI_HEADER)."""
+    out = []
+    for dof, entry in study["dofs"].items():
+        runs = [[name, str(run["cells"] or "—"), *(_num(run.get(k)) for k, _, _ in QUANTITIES),
+                 run["note"]] for name, run in entry["runs"].items()]
+        rows = []
+        for key, label, _ in QUANTITIES:
+            q = entry["quantities"][key]
+            g, t = q["grid"], q["time"]
+            rows.append([label, g.get("kind", g.get("note", "")), _num(g.get("order"), ".3g"),
+                         _num(g.get("extrapolated")), _pct(g.get("relative_error")),
+                         _pct(g.get("gci_fine")),
+                         _pct(t.get("relative_error")) if "values" in t else t.get("note", ""),
+                         _pct(t.get("gci_fine")), _pct(q["uncertainty"])])
+        out.append((dof, runs, rows))
+    return out
+
+
+def study_markdown(study: dict) -> str:
+    """The study as Markdown: per DoF, the runs, then one row per quantity."""
+    def table(header, rows):
+        return ["| " + " | ".join(header) + " |", "|" + "---|" * len(header),
+                *("| " + " | ".join(rows_) + " |" for rows_ in rows), ""]
+
+    lines = [f"# {study['case']}: grid and time-step convergence", ""]
+    for dof, runs, rows in study_tables(study):
+        lines += [f"## {dof}", "", *table(RUNS_HEADER, runs), *table(GCI_HEADER, rows)]
+    return "\n".join([*lines, METHOD, ""])
+
+
+def write_study(study: dict, out_dir: Path) -> list[Path]:
+    """``validation.json``, ``validation.md`` and ``convergence.png`` in ``out_dir``."""
+    from floatfoam.analysis.plots import plot_convergence
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    paths = [out_dir / "validation.json", out_dir / "validation.md", out_dir / "convergence.png"]
+    paths[0].write_text(json.dumps(study, indent=2, default=_json_default) + "\n")
+    paths[1].write_text(study_markdown(study))
+    plot_convergence(study, QUANTITIES, paths[2])
+    return paths
+
+
+def _json_default(value):
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    raise TypeError(f"not JSON serialisable: {value!r}")
+
+
+def extrapolated(study: dict, dof: str, key: str) -> tuple[float, float] | None:
+    """(value, uncertainty) of the fine solution's extrapolation for the comparison: the
+    Richardson value and U_num × it; None when the grids do not converge."""
+    q = study.get("dofs", {}).get(dof, {}).get("quantities", {}).get(key)
+    if not q or q["grid"].get("extrapolated") is None or q["uncertainty"] is None:
+        return None
+    value = q["grid"]["extrapolated"]
+    return value, abs(value) * q["uncertainty"]
+
+
+def read_study(case_name: str, build: Path | None = None) -> dict | None:
+    path = layout.case_build_dir(case_name, build) / "validation" / "validation.json"
+    return json.loads(path.read_text()) if path.is_file() else None

@@ -1,0 +1,70 @@
+"""``floatfoam validate CASE``: the grid and time-step convergence study of a case's CFD.
+
+Runs (or resumes, or reuses when finished) the coarse, medium and fine levels and the fine level
+with its time steps halved, then writes ``<build>/<case>/validation/`` (validation.json,
+validation.md, convergence.png: :mod:`floatfoam.analysis.validation`).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+from floatfoam.cli.common import add_case_arguments
+from floatfoam.errors import InputError
+
+
+def register(sub) -> None:
+    p = sub.add_parser("validate", help="grid and time-step convergence (GCI, Celik et al. "
+                       "2008) of a case's period and damping")
+    add_case_arguments(p)
+    p.add_argument("--np", type=int, default=2, help="MPI ranks of every run (default 2)")
+    p.add_argument("--no-run", action="store_true",
+                   help="analyse the finished runs only; run nothing")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from floatfoam import layout
+    from floatfoam.analysis.validation import STUDY, study_markdown, validate_case, write_study
+    from floatfoam.case import load_case
+    from floatfoam.foam.driver import check_ranks, run_case, solver_path
+    from floatfoam.foam.render import end_time_of
+    from floatfoam.foam.runner import RunError
+    from floatfoam.hydrostatics.theory import equilibrium
+
+    case = load_case(args.case, args.overrides)
+    check_ranks(args.np, None)
+    build = layout.build_dir()
+    if not args.no_run:
+        solver_path(case)
+        end_time_of(case)  # a capsizing case without an end time is refused here
+        eq = equilibrium(case)
+        names = [layout.run_name(level, k) for level, k in STUDY]
+        print(f"[validate {case.name}] {len(STUDY)} runs on {args.np} rank(s): "
+              f"{', '.join(names)} (finished ones are reused, interrupted ones resume)",
+              file=sys.stderr)
+        for i, (level, divisor) in enumerate(STUDY, 1):
+            name = layout.run_name(level, divisor)
+            start = time.monotonic()
+            print(f"[validate {case.name}] run {i}/{len(STUDY)}: {name}", file=sys.stderr)
+            try:
+                result = run_case(case, level, args.np, equilibrium=eq,
+                                  time_step_divisor=divisor)
+            except RunError as err:
+                print(f"floatfoam validate: run {name} failed: {err}", file=sys.stderr)
+                return 1
+            what = "already finished" if result.already_finished else \
+                f"{time.monotonic() - start:.0f} s wall"
+            print(f"[validate {case.name}] {name}: {result.info.get('cells')} cells, {what}",
+                  file=sys.stderr)
+    study = validate_case(case, build)
+    if not study["runs"]:
+        raise InputError(f"case {case.name!r} has no finished run under {build}; valid: run "
+                         "`floatfoam validate` without --no-run first")
+    out = layout.case_build_dir(case.name, build) / "validation"
+    paths = write_study(study, Path(out))
+    print(study_markdown(study))
+    print("written: " + ", ".join(str(p) for p in paths))
+    return 0
