@@ -190,12 +190,11 @@ def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
                 ax.errorbar([0.0], [ext], yerr=None if err is None else [[err], [err]],
                             fmt="D", color="C1", capsize=4,
                             label=f"extrapolated, p = {grid['order']:.2g}")
-            ax.set_title(f"{dof}: {label}", fontsize=9)
+            kind = grid.get("kind") or grid.get("note") or ""
+            ax.set_title(f"{dof}: {label}\n{kind}", fontsize=9)
             ax.set_xlabel("h / h_fine")
             ax.set_ylabel(f"{label.split(' (')[0]}" + (f" ({unit})" if unit else ""))
             ax.set_xlim(left=-0.1)
-            kind = grid.get("kind") or grid.get("note") or ""
-            ax.text(0.02, 0.02, kind, transform=ax.transAxes, fontsize=7, color="0.3")
             if ax.has_data():
                 ax.legend(fontsize=6)
     fig.suptitle(f"{study['case']}: grid and time-step convergence")

@@ -8,6 +8,9 @@ and, for each case, writes into ``build/report/``:
   ``build/<case>/<level>/motion.csv``, the reference) as ``<case>/comparison.{md,csv}``,
 * one decay figure per CFD run and DoF (``<case>/<level>_<dof>.png``,
   :mod:`floatfoam.analysis.plots`),
+* pictures of the flow of each run (free surface, speed, pressure near the body, a GIF of the
+  decay: :mod:`floatfoam.analysis.pictures`), when asked,
+* the grid and time-step study of ``floatfoam validate``, when it has been run,
 
 and gathers them in ``index.md`` and ``index.html`` (the same content).
 """
@@ -16,8 +19,10 @@ from __future__ import annotations
 
 import csv
 import datetime
+import json
 import shutil
 import subprocess
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -171,7 +176,7 @@ def _status(comparison: Comparison) -> str:
 
 
 def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
-                  sources: Sources) -> list[str]:
+                  sources: Sources, pictures: bool = False) -> list[str]:
     """Add one case's section; return its line of the summary table."""
     try:
         case = sources.load(folder)
@@ -196,8 +201,42 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
         doc.heading("Decay records", 3)
         for src, alt in images:
             doc.image(src, alt)
+    if pictures:
+        _pictures_section(doc, case.name, sorted({r.level for r in comparison.analyses},
+                                                 key=layout.LEVELS.index), build_dir, out_dir)
     _validation_section(doc, case.name, build_dir, out_dir)
     return [case.name, title or "—", _periods_cell(theory), _status(comparison)]
+
+
+def _pictures_section(doc: Document, case_name: str, levels: list[str], build_dir: Path,
+                      out_dir: Path) -> None:
+    """Pictures of the flow of each finished run (:mod:`floatfoam.analysis.pictures`), drawn
+    once per run (again when the run is newer than its pictures) and copied beside the page."""
+    from floatfoam.analysis.pictures import case_pictures
+
+    shown = []
+    for level in levels:
+        folder = layout.case_build_dir(case_name, build_dir) / "pictures" / level
+        done = folder / ".drawn"
+        finished = layout.marker(layout.run_dir(case_name, level, build_dir), layout.FINISHED)
+        if done.is_file() and done.stat().st_mtime >= finished.stat().st_mtime:
+            pairs = json.loads(done.read_text())
+        else:
+            print(f"report: drawing the flow of {case_name}/{level} (pyvista)", file=sys.stderr)
+            try:
+                pairs = [(p.name, alt) for p, alt in case_pictures(case_name, level, build_dir)]
+            except InputError as err:
+                doc.paragraph(f"{level}: no pictures of the flow ({err})", note=True)
+                continue
+            done.write_text(json.dumps(pairs))
+        for name, alt in pairs:
+            target = f"{case_name}/pictures_{level}_{name}"
+            shutil.copyfile(folder / name, out_dir / target)
+            shown.append((target, alt))
+    if shown:
+        doc.heading("Pictures of the flow", 3)
+        for src, alt in shown:
+            doc.image(src, alt)
 
 
 def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir: Path) -> None:
@@ -243,10 +282,13 @@ def _provenance() -> str:
 
 
 def build_report(*, cases_dir: str | Path | None = None, build_dir: str | Path | None = None,
-                 out_dir: str | Path | None = None, sources: Sources | None = None) -> Path:
+                 out_dir: str | Path | None = None, sources: Sources | None = None,
+                 pictures: bool = False) -> Path:
     """Write ``index.md``, ``index.html`` and the per-case files; return the HTML's path.
 
     Defaults: the repository's ``cases/`` and ``build/``, and ``<build_dir>/report``.
+    ``pictures`` adds the pictures of the flow of every finished run (``floatfoam report``
+    does by default; drawn once per run).
     """
     sources = sources or Sources.default()
     cases_dir = Path(cases_dir or layout.CASES_DIR)
@@ -258,7 +300,7 @@ def build_report(*, cases_dir: str | Path | None = None, build_dir: str | Path |
         raise InputError(f"cases_dir = {cases_dir}: no case folder with a case.toml; valid is "
                          "the project's cases/ directory")
     body = Document("")
-    summary = [_case_section(body, folder, build_dir, out_dir, sources)
+    summary = [_case_section(body, folder, build_dir, out_dir, sources, pictures)
                for folder in folders]
     doc = Document("floatfoam report")
     doc.paragraph(_provenance(), note=True)

@@ -16,7 +16,7 @@ from floatfoam.errors import ComputationError, InputError
 from floatfoam.interrupts import SignalInterruptError, signals_interrupt
 
 COMMANDS = ["theory", "gz", "mesh", "run", "batch", "analyse", "report", "potential",
-            "decay_model", "validate"]
+            "decay_model", "validate", "pictures"]
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -13,6 +13,9 @@ def add_arguments(parser) -> None:
                              "(default: the project's build/)")
     parser.add_argument("--no-potential", dest="potential", action="store_false",
                         help="leave potential flow out of the comparison")
+    parser.add_argument("--no-pictures", dest="pictures", action="store_false",
+                        help="leave the pictures of the flow out (pyvista; ~15 s per run the "
+                             "first time, reused after)")
 
 
 def register(sub) -> None:
@@ -25,6 +28,7 @@ def run(args) -> int:
     from floatfoam.analysis.report import Sources, build_report
 
     html = build_report(cases_dir=args.cases, build_dir=args.build, out_dir=args.out,
-                        sources=Sources.default(include_potential=args.potential))
+                        sources=Sources.default(include_potential=args.potential),
+                        pictures=args.pictures)
     print(f"report: {html} (and {html.with_suffix('.md')})")
     return 0

@@ -1,0 +1,152 @@
+"""Pictures of the flow (floatfoam.analysis.pictures, ``floatfoam pictures``).
+
+Refusals and the choice of times run on a one-cell case written here by hand (no OpenFOAM
+utility runs in the fast tests); one test (marker ``openfoam``) renders a short real run.
+"""
+
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from floatfoam.analysis.flowview import default_times, nearest, open_run
+from floatfoam.errors import InputError
+from floatfoam.motion import write_motion
+
+HEADER = 'FoamFile {{ version 2.0; format ascii; class {cls}; object {obj}; }}\n'
+# a unit cube, one cell: the patch body its bottom face, the patch walls the five others
+POINTS = "(0 0 0) (1 0 0) (1 1 0) (0 1 0) (0 0 1) (1 0 1) (1 1 1) (0 1 1)"
+FACES = "4(0 3 2 1) 4(4 5 6 7) 4(0 1 5 4) 4(3 7 6 2) 4(0 4 7 3) 4(1 2 6 5)"
+BOUNDARY = "2(body { type wall; nFaces 1; startFace 0; } walls { type wall; nFaces 5; " \
+           "startFace 1; })"
+FIELDS = {"alpha.water": ("volScalarField", "0", "1"),
+          "p_rgh": ("volScalarField", "-2 1 -2 0 0 0 0", "0"),
+          "U": ("volVectorField", "0 1 -1 0 0 0 0", "(0 0 0)")}
+
+
+def _write(path, cls, body):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(HEADER.format(cls=cls, obj=path.name) + body + "\n")
+
+
+def fake_run(build, times=(0.0, 0.1, 0.2, 0.3), *, finished=True, fields=tuple(FIELDS)):
+    """A run directory ``<build>/sphere/coarse`` the OpenFOAM reader accepts: one cell, the
+    written ``times`` holding ``fields``, a heave record with its first trough at 0.2 s."""
+    run = build / "sphere" / "coarse"
+    mesh = run / "constant" / "polyMesh"
+    _write(run / "system" / "controlDict", "dictionary",
+           "application interFoam; startFrom startTime; startTime 0; stopAt endTime; "
+           f"endTime {times[-1]}; deltaT 0.01; writeControl runTime; writeInterval 0.1;")
+    _write(mesh / "points", "vectorField", f"8({POINTS})")
+    _write(mesh / "faces", "faceList", f"6({FACES})")
+    _write(mesh / "owner", "labelList", "6(0 0 0 0 0 0)")
+    _write(mesh / "neighbour", "labelList", "0()")
+    _write(mesh / "boundary", "polyBoundaryMesh", BOUNDARY)
+    for t in times:
+        for name in fields:
+            cls, dims, value = FIELDS[name]
+            _write(run / f"{t:g}" / name, cls, f"dimensions [{dims}]; internalField uniform "
+                   f"{value}; boundaryField {{ body {{ type zeroGradient; }} walls {{ type "
+                   "zeroGradient; }} }}")
+    markers = run / ".floatfoam"
+    markers.mkdir(parents=True)
+    (markers / "info.json").write_text(json.dumps({"mesh": "2d", "cells": 1, "heel": 0.0,
+                                                   "trim": 0.0, "end_time": times[-1]}))
+    if finished:
+        (markers / "finished.done").write_text("done\n")
+    t = np.linspace(0.0, times[-1], 31)
+    write_motion(run / "motion.csv", t, z=0.01 * np.cos(np.pi * t / 0.2))
+    return run
+
+
+def files_under(folder):
+    return sorted(p for p in folder.rglob("*"))
+
+
+def pictures(build, *argv):
+    env = {**os.environ, "FLOATFOAM_BUILD": str(build)}
+    env.pop("DISPLAY", None)
+    return subprocess.run([sys.executable, "-m", "floatfoam.cli", "pictures", *argv], env=env,
+                          capture_output=True, text=True, timeout=120)
+
+
+@pytest.mark.parametrize("argv, says", [
+    (["sphere", "--level", "huge"], "--level 'huge'"),
+    (["sphere", "--level", "medium"], "no finished run"),
+    (["sphere", "--times", "0.1", "5"], "--times 5 s"),
+    (["sphere", "--times", "-0.1"], "--times -0.1 s"),
+    (["sphere", "--colour", "red"], "--colour 'red'"),
+    (["sphere", "--set", "mass.density=300"], "--set"),
+])
+def test_bad_input_is_refused_in_one_line_and_nothing_written(tmp_path, argv, says):
+    fake_run(tmp_path)
+    before = files_under(tmp_path)
+    proc = pictures(tmp_path, *argv)
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and says in lines[0] and "Traceback" not in proc.stderr
+    assert files_under(tmp_path) == before
+
+
+@pytest.mark.parametrize("kind", ["only the release written", "no alpha field", "unfinished"])
+def test_run_without_pictures_is_refused(tmp_path, kind):
+    if kind == "only the release written":
+        fake_run(tmp_path, times=(0.0,))
+    elif kind == "no alpha field":
+        fake_run(tmp_path, fields=("U", "p_rgh"))
+    else:
+        fake_run(tmp_path, finished=False)
+    before = files_under(tmp_path)
+    proc = pictures(tmp_path, "sphere")
+    expected = {"only the release written": "no written time beyond 0",
+                "no alpha field": "no field alpha.water", "unfinished": "no finished run"}[kind]
+    assert proc.returncode == 2 and expected in proc.stderr
+    assert len(proc.stderr.strip().splitlines()) == 1
+    assert files_under(tmp_path) == before
+
+
+def test_default_times_are_release_first_trough_and_last(tmp_path):
+    """The record z = 0.01 cos(πt/0.2) has its first trough at 0.2 s."""
+    run = open_run(fake_run(tmp_path))
+    assert run.dof == "heave" and list(run.times) == pytest.approx([0.0, 0.1, 0.2, 0.3])
+    assert default_times(run) == pytest.approx([0.0, 0.2, 0.3])
+    assert nearest(run, 0.26) == pytest.approx(0.3)
+    with pytest.raises(InputError, match="0 … 0.3 s"):
+        nearest(run, 0.31)
+
+
+@pytest.mark.openfoam
+def test_pictures_of_a_short_sphere_run(tmp_path):
+    """0.12 s of the sphere's heave (wedge), fields every 0.04 s, rendered: the PNGs are images
+    of the window's size with the colours of the water, the body and the colour bar; the GIF
+    has one frame per written time."""
+    import imageio.v3 as iio
+
+    from floatfoam.analysis.pictures import GIF_WINDOW, WINDOW, case_pictures
+    from floatfoam.case import load_case
+    from floatfoam.foam.driver import run_case
+
+    case = load_case("sphere", ["run.end_time=0.12", "run.write_interval=0.04"])
+    result = run_case(case, "coarse", 2, build_dir=tmp_path)
+    run = open_run(result.run_dir)
+    written = run.times
+    assert written == pytest.approx([0.0, 0.04, 0.08, 0.12], abs=1e-6)
+    flows = len(default_times(run))  # 2: no trough yet in 0.12 s (at ~0.31 s), the last time
+    pairs = case_pictures("sphere", "coarse", tmp_path)  # ~3 s (its cost: the note, not here)
+    pngs = [p for p, _ in pairs if p.suffix == ".png"]
+    assert len(pngs) == flows + 1 and all(alt for _, alt in pairs)  # + the near-body one
+    viridis_low = np.array([68, 1, 84])  # water at rest: the bottom of the colour map
+    for png in pngs:
+        image = iio.imread(png)[..., :3]
+        assert image.shape == (WINDOW[1], WINDOW[0], 3)
+        colours = np.unique(image.reshape(-1, 3), axis=0)
+        assert len(colours) > 200  # not blank: a colour map, shading, text
+    flow = iio.imread(pngs[0])[..., :3].reshape(-1, 3)
+    water = np.all(np.abs(flow.astype(int) - viridis_low) <= 3, axis=1)
+    assert water.mean() > 0.05  # the still water far from the body
+    gif = next(p for p, _ in pairs if p.suffix == ".gif")
+    frames = iio.imread(gif, index=None)
+    assert frames.shape[:3] == (written.size, GIF_WINDOW[1], GIF_WINDOW[0])
