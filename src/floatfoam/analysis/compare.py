@@ -33,6 +33,8 @@ from pathlib import Path
 
 from floatfoam import dofs, layout
 from floatfoam.analysis.decay import DecayResult, analyse_decay
+from floatfoam.analysis.extrema import crossing_reduction
+from floatfoam.analysis.uncertainty import extrapolated, read_study
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.motion import dof_series, file_unit, read_motion
@@ -200,8 +202,6 @@ def _theory_rows(case, dof, theory, potential):
 def _extrapolated_row(case, dof, build_dir):
     """The CFD's Richardson-extrapolated period and damping ratio ± the fine level's numerical
     uncertainty U_num (grid and time step: ``floatfoam validate``), when studied."""
-    from floatfoam.analysis.validation import extrapolated, read_study
-
     study = read_study(case.name, Path(build_dir))
     if study is None:
         return None
@@ -223,9 +223,6 @@ def _first_cycle_rows(case, dof, runs, reference, build_dir) -> list[dict]:
     from the first trough's zero crossings, ζ over the first six extrema, the first trough),
     beside ``[reference] <dof>_first_period``, ``<dof>_first_damping_ratio`` and
     ``<dof>_first_trough`` — only when the reference has them."""
-    from floatfoam.analysis.extrema import crossing_reduction
-    from floatfoam.analysis.validation import extrapolated, read_study
-
     keys = [f"{dof}_first_{k}" for k in ("period", "damping_ratio", "trough")]
     period, zeta, trough = (reference_entry(reference, k) for k in keys)
     if period is None and zeta is None:

@@ -241,13 +241,8 @@ def _pictures_section(doc: Document, case_name: str, levels: list[str], build_di
 
 def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir: Path) -> None:
     """The grid and time-step study of ``floatfoam validate``, when it has been run."""
-    from floatfoam.analysis.validation import (
-        GCI_HEADER,
-        METHOD,
-        RUNS_HEADER,
-        read_study,
-        study_tables,
-    )
+    from floatfoam.analysis.uncertainty import read_study
+    from floatfoam.analysis.validation import GCI_HEADER, METHOD, RUNS_HEADER, study_tables
 
     study = read_study(case_name, build_dir)
     if study is None:

@@ -32,6 +32,7 @@ from floatfoam import layout
 from floatfoam.analysis import gci
 from floatfoam.analysis.compare import analyse_run, excited_dofs
 from floatfoam.analysis.extrema import crossing_reduction
+from floatfoam.analysis.uncertainty import STUDY_FILE
 from floatfoam.errors import InputError
 from floatfoam.motion import dof_series, read_motion
 
@@ -196,7 +197,7 @@ def write_study(study: dict, out_dir: Path) -> list[Path]:
     from floatfoam.analysis.plots import plot_convergence
 
     out_dir.mkdir(parents=True, exist_ok=True)
-    paths = [out_dir / "validation.json", out_dir / "validation.md", out_dir / "convergence.png"]
+    paths = [out_dir / STUDY_FILE, out_dir / "validation.md", out_dir / "convergence.png"]
     paths[0].write_text(json.dumps(study, indent=2, default=_json_default) + "\n")
     paths[1].write_text(study_markdown(study))
     plot_convergence(study, QUANTITIES, paths[2])
@@ -207,18 +208,3 @@ def _json_default(value):
     if isinstance(value, float) and not math.isfinite(value):
         return None
     raise TypeError(f"not JSON serialisable: {value!r}")
-
-
-def extrapolated(study: dict, dof: str, key: str) -> tuple[float, float] | None:
-    """(value, uncertainty) of the fine solution's extrapolation for the comparison: the
-    Richardson value and U_num × it; None when the grids do not converge."""
-    q = study.get("dofs", {}).get(dof, {}).get("quantities", {}).get(key)
-    if not q or q["grid"].get("extrapolated") is None or q["uncertainty"] is None:
-        return None
-    value = q["grid"]["extrapolated"]
-    return value, abs(value) * q["uncertainty"]
-
-
-def read_study(case_name: str, build: Path | None = None) -> dict | None:
-    path = layout.case_build_dir(case_name, build) / "validation" / "validation.json"
-    return json.loads(path.read_text()) if path.is_file() else None
