@@ -34,13 +34,12 @@ from floatfoam.analysis.compare import analyse_run, excited_dofs
 from floatfoam.analysis.extrema import crossing_reduction
 from floatfoam.analysis.uncertainty import STUDY_FILE
 from floatfoam.errors import InputError
-from floatfoam.motion import dof_series, read_motion
 
 #: (mesh level, time-step divisor) of the four runs, in the order they are run
 STUDY = (("coarse", 1), ("medium", 1), ("fine", 1), ("fine", 2))
 TIME_STEP_DIVISOR = 2
 TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
-#: key, label, unit (None: the DoF's own time unit, s)
+#: key, label, unit of each quantity of the study
 QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
               ("first_period", "first period (first trough's crossings)", "s"),
               ("damping_ratio", "damping ratio ζ", ""))
@@ -73,13 +72,12 @@ def _run_values(name: str, run: Path, dof: str) -> RunValues:
     dimension = 3 if str(info.get("mesh", "")).startswith("3d") else 2
     out = RunValues(name, info.get("cells"), dimension)
     try:
-        _, _, result = analyse_run(run / "motion.csv", dof)
+        time, value, result = analyse_run(run / "motion.csv", dof)
     except InputError as err:
         out.note = f"analysis failed: {err}"
         out.values = dict.fromkeys(k for k, _, _ in QUANTITIES)
         return out
     s = result.summary()
-    time, value = dof_series(read_motion(run / "motion.csv"), dof)
     try:
         level = float(result.fit.mean_level(time[-1]))  # five periods do not settle
         first = crossing_reduction(time, value, level=level).first_period

@@ -26,11 +26,15 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    """Exit codes as ``floatfoam run``'s: 0 done, 1 a run failed, 2 bad input, 75 another run
+    holds a run directory, 128 + signal when interrupted (the same command resumes)."""
     from floatfoam import layout
     from floatfoam.analysis.validation import STUDY, study_markdown, validate_case, write_study
     from floatfoam.case import load_case
+    from floatfoam.cli.run import EXIT_LOCKED
     from floatfoam.foam.driver import check_ranks, run_case, solver_path
     from floatfoam.foam.render import end_time_of
+    from floatfoam.foam.runlock import RunLockedError
     from floatfoam.foam.runner import RunError
     from floatfoam.hydrostatics.theory import equilibrium
 
@@ -55,6 +59,9 @@ def run(args) -> int:
             except RunError as err:
                 print(f"floatfoam validate: run {name} failed: {err}", file=sys.stderr)
                 return 1
+            except RunLockedError as err:
+                print(f"floatfoam validate: {err}", file=sys.stderr)
+                return EXIT_LOCKED
             what = "already finished" if result.already_finished else \
                 f"{time.monotonic() - start:.0f} s wall"
             print(f"[validate {case.name}] {name}: {result.info.get('cells')} cells, {what}",
