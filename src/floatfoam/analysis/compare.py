@@ -11,8 +11,9 @@ trim → heave, roll, pitch) or lists a reference for:
 * **CFD <level>**: each ``build/<case>/<level>/motion.csv``, through :func:`analyse_decay`.
   The period is the damped period T_d of the record (what a decay test measures; the natural
   period T_n = T_d √(1 − ζ²) is in the note) with its 95 % interval;
-* **CFD extrapolated**: the Richardson extrapolation of the three levels ± the numerical
-  uncertainty of the fine one (grid and time step), when ``floatfoam validate`` has studied it;
+* **CFD fine ± U_num**: the fine level's value ± its numerical uncertainty (levels and time
+  step), with the Richardson extrapolation in the note, when ``floatfoam validate`` has
+  studied it;
 * **reference**: the measured value of the case's ``[reference]`` table (value ± uncertainty);
 * **<dof>, first 3 cycles**: when the reference gives the first cycles of a measured record
   (``<dof>_first_period``, ``_first_damping_ratio``, ``_first_trough``), each CFD record
@@ -34,7 +35,7 @@ from pathlib import Path
 from floatfoam import dofs, layout
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.analysis.extrema import crossing_reduction
-from floatfoam.analysis.uncertainty import extrapolated, read_study
+from floatfoam.analysis.uncertainty import fine_band, read_study
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.motion import dof_series, file_unit, read_motion
@@ -118,6 +119,13 @@ def theory_equilibrium(theory: TheorySummary, dof: str) -> float | None:
     return math.radians(value) if entry.is_angle else value
 
 
+def first_cycles(time, value, result: DecayResult):
+    """The record's first cycles reduced by its zero crossings
+    (:func:`floatfoam.analysis.extrema.crossing_reduction`) about its decay fit's mean level at
+    the end: five periods of CFD do not settle. Raises ValueError on too short a record."""
+    return crossing_reduction(time, value, level=float(result.fit.mean_level(time[-1])))
+
+
 def analyse_run(path: Path, dof: str, **options) -> tuple[object, object, DecayResult]:
     """Time, value (code units) and decay analysis of one DoF of a motion CSV."""
     time, value = dof_series(read_motion(path), dof)
@@ -199,61 +207,55 @@ def _theory_rows(case, dof, theory, potential):
     return rows
 
 
-def _extrapolated_row(case, dof, build_dir):
-    """The CFD's Richardson-extrapolated period and damping ratio ± the fine level's numerical
-    uncertainty U_num (grid and time step: ``floatfoam validate``), when studied."""
-    study = read_study(case.name, Path(build_dir))
-    if study is None:
-        return None
-    period, zeta = extrapolated(study, dof, "period"), extrapolated(study, dof, "damping_ratio")
+def _range(entry) -> list[float] | None:
+    """[value − u, value + u] of a (value, uncertainty, ...) entry; None without uncertainty."""
+    return None if entry is None or entry[1] is None else [entry[0] - entry[1],
+                                                            entry[0] + entry[1]]
+
+
+def _band_row(case, label, dof, study, keys) -> dict | None:
+    """The fine level's value ± U_num (``floatfoam validate``) of the quantities ``keys``
+    (period key, damping key or None), with the Richardson extrapolation in the note."""
+    period, zeta = (fine_band(study, dof, k) if study and k else None for k in keys)
     if period is None and zeta is None:
         return None
+    ext = "; ".join(f"extrapolated {name} {b[2]:.5g}" for name, b in (("T", period),
+                                                                       ("ζ", zeta))
+                    if b is not None and b[2] is not None)
+    return _row(case.name, label, "CFD fine ± U_num", period and period[0], _range(period),
+                zeta and zeta[0], _range(zeta),
+                "; ".join(filter(None, ("grid and time-step study (floatfoam validate)", ext))))
 
-    def interval(entry):
-        return None if entry is None else [entry[0] - entry[1], entry[0] + entry[1]]
 
-    return _row(case.name, dof, "CFD extrapolated", period and period[0], interval(period),
-                zeta and zeta[0], interval(zeta),
-                "Richardson extrapolation of coarse/medium/fine ± U_num (floatfoam validate)")
-
-
-def _first_cycle_rows(case, dof, runs, reference, build_dir) -> list[dict]:
+def _first_cycle_rows(case, dof, analyses, reference, study) -> list[dict]:
     """The first cycles of each CFD record reduced as the case's reference reduces its
-    measurements (:func:`floatfoam.analysis.extrema.crossing_reduction`: the first period
-    from the first trough's zero crossings, ζ over the first six extrema, the first trough),
-    beside ``[reference] <dof>_first_period``, ``<dof>_first_damping_ratio`` and
-    ``<dof>_first_trough`` — only when the reference has them."""
+    measurements (:func:`first_cycles`: the first period from the first trough's zero
+    crossings, ζ over the first six extrema, the first trough), beside ``[reference]
+    <dof>_first_period``, ``<dof>_first_damping_ratio`` and ``<dof>_first_trough`` — only
+    when the reference has them."""
     keys = [f"{dof}_first_{k}" for k in ("period", "damping_ratio", "trough")]
     period, zeta, trough = (reference_entry(reference, k) for k in keys)
     if period is None and zeta is None:
         return []
     label, (scale, unit) = f"{dof}, first 3 cycles", file_unit(dof)
     rows = []
-    for level, path in runs:
+    for run in analyses:
         try:
-            time, value, decay = analyse_run(path, dof)
-            r = crossing_reduction(time, value, level=float(decay.fit.mean_level(time[-1])))
-        except (ValueError, InputError) as err:
-            rows.append(_row(case.name, label, f"CFD {level}", note=f"analysis failed: {err}"))
+            r = first_cycles(run.time, run.value, run.result)
+        except ValueError as err:
+            rows.append(_row(case.name, label, f"CFD {run.level}",
+                             note=f"analysis failed: {err}"))
             continue
-        rows.append(_row(case.name, label, f"CFD {level}", r.first_period,
+        rows.append(_row(case.name, label, f"CFD {run.level}", r.first_period,
                          zeta=r.damping_ratio,
                          note=f"first trough {r.first_trough * scale:.4g} {unit}"))
-    study = read_study(case.name, Path(build_dir))
-    ext = extrapolated(study, dof, "first_period") if study else None
-    if ext is not None:
-        rows.append(_row(case.name, label, "CFD extrapolated", ext[0],
-                         [ext[0] - ext[1], ext[0] + ext[1]], note="± U_num (floatfoam validate)"))
-
-    def interval(entry):
-        return None if entry is None or entry[1] is None else \
-            [entry[0] - entry[1], entry[0] + entry[1]]
-
+    band = _band_row(case, label, dof, study, ("first_period", None))
+    rows += [band] if band else []
     notes = [f"first trough {trough[0] * scale:.4g} {unit}"
              + (f" ± {trough[1] * scale:.2g}" if trough[1] else "")] if trough else []
     sources = sorted({e[2] for e in (period, zeta, trough) if e is not None and e[2]})
-    rows.append(_row(case.name, label, "reference", period and period[0], interval(period),
-                     zeta and zeta[0], interval(zeta), "; ".join(notes + sources)))
+    rows.append(_row(case.name, label, "reference", period and period[0], _range(period),
+                     zeta and zeta[0], _range(zeta), "; ".join(notes + sources)))
     _relative_differences(rows)
     return rows
 
@@ -264,14 +266,9 @@ def _reference_row(case, dof, reference):
     if period is None and zeta is None:
         return None
 
-    def interval(entry):
-        if entry is None or entry[1] is None:
-            return None
-        return [entry[0] - entry[1], entry[0] + entry[1]]
-
     sources = sorted({e[2] for e in (period, zeta) if e is not None and e[2]})
-    return _row(case.name, dof, "reference", period[0] if period else None, interval(period),
-                zeta[0] if zeta else None, interval(zeta), "; ".join(sources))
+    return _row(case.name, dof, "reference", period[0] if period else None, _range(period),
+                zeta[0] if zeta else None, _range(zeta), "; ".join(sources))
 
 
 def _relative_differences(rows: list[dict]) -> None:
@@ -312,20 +309,20 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
     runs = cfd_runs(case.name, build_dir)
     if not runs:
         comparison.notes.append(f"CFD: no run yet (no {Path(build_dir, case.name)}/*/motion.csv)")
+    study = read_study(case.name, Path(build_dir))
     for dof in excited_dofs(case, reference):
         rows = _theory_rows(case, dof, theory, potential)
         cfd_rows, analyses = _cfd_rows(case, dof, runs, theory, analysis_options or {})
         rows += cfd_rows
-        extrapolated = _extrapolated_row(case, dof, build_dir)
-        if extrapolated is not None:
-            rows.append(extrapolated)
+        band = _band_row(case, dof, dof, study, ("period", "damping_ratio"))
+        rows += [band] if band else []
         comparison.analyses += analyses
         ref_row = _reference_row(case, dof, reference)
         if ref_row is not None:
             rows.append(ref_row)
         _relative_differences(rows)
         comparison.rows += rows
-        comparison.rows += _first_cycle_rows(case, dof, runs, reference, build_dir)
+        comparison.rows += _first_cycle_rows(case, dof, analyses, reference, study)
     return comparison
 
 

@@ -60,16 +60,19 @@ def crossing_reduction(t, x, *, level: float | None = None, n_extrema: int = 6,
     settled = float(np.mean(x[t >= t[0] + (1 - tail) * (t[-1] - t[0])])) if level is None \
         else float(level)
     y = x - settled
-    sign = np.sign(y)
-    idx = np.nonzero(sign[1:] * sign[:-1] < 0)[0]
+    above = y >= 0  # a sample exactly on the level counts as above: no crossing is lost
+    idx = np.nonzero(above[1:] != above[:-1])[0]
+    if idx.size and not above[idx[0]]:
+        raise ValueError("the record starts below its settled level; valid is a release from "
+                         "above (a positive offset)")
     crossings = t[idx] - y[idx] * (t[idx + 1] - t[idx]) / (y[idx + 1] - y[idx])
     extrema = []
     for a, b in zip(idx[:-1], idx[1:], strict=True):
         k = a + 1 + int(np.argmax(np.abs(y[a + 1:b + 1])))
         extrema.append(_parabola_peak(t, y, k))
-    if len(extrema) < n_extrema or y[idx[0]] < 0:
-        raise ValueError(f"{len(extrema)} extrema after a first down-crossing; "
-                         f"{n_extrema} are needed")
+    if len(extrema) < n_extrema:
+        raise ValueError(f"{len(extrema)} extrema between zero crossings; {n_extrema} are "
+                         "needed")
     times = np.array([e[0] for e in extrema[:n_extrema]])
     amps = np.abs([e[1] for e in extrema[:n_extrema]])
     sigma = -float(np.polyfit(times, np.log(amps), 1)[0])
@@ -81,11 +84,14 @@ def crossing_reduction(t, x, *, level: float | None = None, n_extrema: int = 6,
 
 
 def _parabola_peak(t, y, k) -> tuple[float, float]:
-    """Time and value of the vertex of the parabola through samples k − 1, k, k + 1."""
+    """Time and value of the vertex of the parabola through samples k − 1, k, k + 1 (the
+    sample itself when the vertex falls outside them, as the reference reduction does)."""
     if k == 0 or k == len(y) - 1:
         return float(t[k]), float(y[k])
     coef = np.polyfit(t[k - 1:k + 2] - t[k], y[k - 1:k + 2], 2)
     if coef[0] == 0:
         return float(t[k]), float(y[k])
     s = -coef[1] / (2 * coef[0])
+    if not t[k - 1] - t[k] <= s <= t[k + 1] - t[k]:  # a vertex outside its samples: the sample
+        return float(t[k]), float(y[k])
     return float(t[k] + s), float(np.polyval(coef, s))

@@ -22,8 +22,8 @@ range, no order and no GCI, and the result says that instead of inventing one. �
 
 Two solutions only (the time-step halving of a validation, :func:`two_level`): Roache (1998,
 *Verification and Validation in Computational Science and Engineering*, Hermosa), GCI =
-F_s |ε|/(r^p − 1) with the scheme's formal order p and the safety factor F_s = 3 he gives for
-two-grid studies.
+F_s |ε|/(r^p − 1) for the finer solution and F_s |ε| r^p/(r^p − 1) for the coarser, with the
+scheme's formal order p and the safety factor F_s = 3 he gives for two-grid studies.
 """
 
 from __future__ import annotations
@@ -36,14 +36,16 @@ SAFETY_TWO_GRIDS = 3.0  # Roache (1998): a two-grid study with an assumed order
 MONOTONIC, OSCILLATORY = "monotonic convergence", "oscillatory convergence"
 DIVERGENT_MONOTONIC, DIVERGENT_OSCILLATORY = "monotonic divergence", "oscillatory divergence"
 CONVERGED = "no change between grids"
+NO_ORDER = "converging, but no observed order"  # the fixed point of eq. 3 does not exist
 
 
 @dataclass(frozen=True)
 class GridConvergence:
     """One quantity on three grids and what Celik et al.'s procedure makes of it.
 
-    ``order``, ``extrapolated``, ``extrapolated_coarse``, ``relative_error_extrapolated`` and
-    ``gci_fine`` (fractions, not %) are None when the grids do not converge (``kind``).
+    ``order``, ``extrapolated``, ``extrapolated_coarse``, ``relative_error_extrapolated``,
+    ``gci_fine`` and ``gci_fine32`` (fractions, not %) are None when the grids do not converge
+    or give no order (``kind``).
     """
 
     values: tuple[float, float, float]  # φ1 (fine), φ2, φ3 (coarse)
@@ -57,7 +59,7 @@ class GridConvergence:
     relative_error_extrapolated: float | None  # e_ext21
     gci_fine: float | None  # GCI_fine21
     relative_error_coarse: float  # e_a32
-    gci_coarse: float | None  # GCI_coarse32 = 1.25 e_a32/(r32^p − 1)
+    gci_fine32: float | None  # GCI_fine32 = 1.25 e_a32/(r32^p − 1), the medium grid's
 
     @property
     def converges(self) -> bool:
@@ -109,7 +111,7 @@ def three_grids(fine: float, medium: float, coarse: float, r21: float, r32: floa
     common = {"values": values, "ratios": (r21, r32), "relative_error": e_a21,
               "relative_error_coarse": e_a32}
     none = dict.fromkeys(("order", "extrapolated", "extrapolated_coarse",
-                          "relative_error_extrapolated", "gci_fine", "gci_coarse"))
+                          "relative_error_extrapolated", "gci_fine", "gci_fine32"))
     if abs(e21) <= scale or abs(e32) <= scale:
         return GridConvergence(kind=CONVERGED, ratio_r=None, **common, **none)
     ratio = e21 / e32
@@ -120,7 +122,7 @@ def three_grids(fine: float, medium: float, coarse: float, r21: float, r32: floa
     try:
         p = observed_order(e21, e32, r21, r32)
     except ArithmeticError:
-        return GridConvergence(kind=kind, ratio_r=ratio, **common, **none)
+        return GridConvergence(kind=NO_ORDER, ratio_r=ratio, **common, **none)
     f21, f32 = r21**p, r32**p
     ext21 = (f21 * fine - medium) / (f21 - 1)
     ext32 = (f32 * medium - coarse) / (f32 - 1)
@@ -128,28 +130,35 @@ def three_grids(fine: float, medium: float, coarse: float, r21: float, r32: floa
         kind=kind, ratio_r=ratio, order=p, extrapolated=ext21, extrapolated_coarse=ext32,
         relative_error_extrapolated=abs((ext21 - fine) / ext21) if ext21 else math.inf,
         gci_fine=SAFETY_THREE_GRIDS * e_a21 / (f21 - 1),
-        gci_coarse=SAFETY_THREE_GRIDS * e_a32 / (f32 - 1), **common)
+        gci_fine32=SAFETY_THREE_GRIDS * e_a32 / (f32 - 1), **common)
 
 
 @dataclass(frozen=True)
 class TwoLevel:
-    """A quantity at two resolutions (e.g. two time steps) and Roache's two-grid GCI."""
+    """A quantity at two resolutions (e.g. two time steps) and Roache's two-grid GCI of each.
+
+    ``gci_fine`` bands the finer solution, ``gci_coarse`` the coarser one (fractions)."""
 
     values: tuple[float, float]  # fine, coarse
     ratio: float
     order: float  # the scheme's formal order, assumed
-    relative_error: float  # |(φ_coarse − φ_fine)/φ_fine|
+    relative_error: float  # |(φ_coarse − φ_fine)/φ_coarse|
     gci_fine: float
+    gci_coarse: float
 
     def as_dict(self) -> dict:
         return asdict(self)
 
 
 def two_level(fine: float, coarse: float, ratio: float, order: float) -> TwoLevel:
-    """Roache's (1998) two-grid GCI: F_s |(φc − φf)/φf| / (r^p − 1), F_s = 3, p the scheme's
-    formal order (an assumption: two solutions cannot observe it)."""
+    """Roache's (1998) two-grid GCI with F_s = 3 and p the scheme's formal order (an
+    assumption: two solutions cannot observe it), ε = |(φc − φf)/φc|: the finer solution's
+    GCI = F_s ε/(r^p − 1), the coarser one's F_s ε r^p/(r^p − 1)."""
     if ratio <= 1 or order <= 0:
         raise ValueError(f"ratio = {ratio}, order = {order}: valid are r > 1, p > 0")
-    rel = abs((coarse - fine) / fine) if fine else math.inf
+    if not (math.isfinite(fine) and math.isfinite(coarse)):
+        raise ValueError(f"values {fine}, {coarse}: valid are finite numbers")
+    rel = abs((coarse - fine) / coarse) if coarse else math.inf
+    f = ratio**order
     return TwoLevel((float(fine), float(coarse)), ratio, order, rel,
-                    SAFETY_TWO_GRIDS * rel / (ratio**order - 1))
+                    SAFETY_TWO_GRIDS * rel / (f - 1), SAFETY_TWO_GRIDS * rel * f / (f - 1))

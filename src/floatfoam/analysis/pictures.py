@@ -8,9 +8,10 @@ colour limits are :mod:`floatfoam.analysis.flowview`'s; here they are drawn, thr
 without an X display: square on (parallel projection) for a slab or a wedge, obliquely from
 x < 0 for a 3D body (a cutaway: the section in front, the free surface behind it).
 
-Cost, measured on the coarse example runs (2 cores, one busy with a solver): about 1 s per PNG
-and 0.3–0.5 s per GIF frame (one per written time), whatever the mesh kind: every frame is
-cropped to the view box before it is cut and drawn.
+Cost, measured on the coarse example runs (2 cores, one busy with a solver): 0.3–0.7 s per PNG
+and 0.2–0.3 s per GIF frame (one per written time, at most MAX_FRAMES), 8–13 s per GIF of
+33–52 frames, whatever the mesh kind: every frame is cropped to the view box before it is cut
+and drawn.
 """
 
 from __future__ import annotations

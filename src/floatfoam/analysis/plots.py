@@ -159,46 +159,46 @@ def plot_decay(path: str | Path, time, value, result: DecayResult, *,
 
 def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
     """Each quantity of a grid study (``floatfoam.analysis.validation``) against the cell size
-    h/h_fine, one row per DoF: the three levels, the halved time step at the fine level, and
-    at h = 0 the Richardson-extrapolated value with the fine solution's ± U_num."""
+    h/h_fine, one row per DoF: the three levels with the fine one's ± U_num, the halved time
+    step at the fine level, and at h = 0 the Richardson-extrapolated value."""
     entries = list(study["dofs"].items()) or [("—", {"runs": {}, "quantities": {}})]
     fig = Figure(figsize=(4 * len(quantities), 3.2 * len(entries)), layout="constrained")
     axes = fig.subplots(len(entries), len(quantities), squeeze=False)
     for row, (dof, entry) in zip(axes, entries, strict=True):
-        runs = entry["runs"]
-        fine_cells = (runs.get("fine") or {}).get("cells")
         for ax, (key, label, unit) in zip(row, quantities, strict=True):
-            sizes, values, names = [], [], []
-            for name, run in runs.items():
-                if run.get(key) is None or not run.get("cells") or not fine_cells:
-                    continue
-                sizes.append((fine_cells / run["cells"]) ** (1 / run["dimension"]))
-                values.append(run[key])
-                names.append(name)
-            grid_pts = [(h, v) for h, v, n in zip(sizes, values, names, strict=True)
-                        if "-dt" not in n]
-            if grid_pts:
-                ax.plot(*zip(*grid_pts, strict=True), "o-", color="C0", label="levels")
-            for h, v, n in zip(sizes, values, names, strict=True):
-                if "-dt" in n:
-                    ax.plot(h, v, "s", color="C3", mfc="none", label=f"{n} (time step / 2)")
-            q = entry["quantities"].get(key, {})
-            grid = q.get("grid", {})
-            if grid.get("extrapolated") is not None:
-                ext, u = grid["extrapolated"], q.get("uncertainty")
-                err = None if u is None else abs(ext) * u
-                ax.errorbar([0.0], [ext], yerr=None if err is None else [[err], [err]],
-                            fmt="D", color="C1", capsize=4,
-                            label=f"extrapolated, p = {grid['order']:.2g}")
-            kind = grid.get("kind") or grid.get("note") or ""
-            ax.set_title(f"{dof}: {label}\n{kind}", fontsize=9)
-            ax.set_xlabel("h / h_fine")
-            ax.set_ylabel(f"{label.split(' (')[0]}" + (f" ({unit})" if unit else ""))
-            ax.set_xlim(left=-0.1)
-            if ax.has_data():
-                ax.legend(fontsize=6)
+            _convergence_panel(ax, dof, entry, key, label, unit)
     fig.suptitle(f"{study['case']}: grid and time-step convergence")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=100)
     return path
+
+
+def _convergence_panel(ax, dof, entry, key, label, unit) -> None:
+    runs = entry["runs"]
+    fine_cells = (runs.get("fine") or {}).get("cells")
+    points = [((fine_cells / run["cells"]) ** (1 / run["dimension"]), run[key],
+               run.get("divisor", 1)) for run in runs.values()
+              if run.get(key) is not None and run.get("cells") and fine_cells]
+    levels = sorted((h, v) for h, v, k in points if k == 1)
+    if levels:
+        ax.plot(*zip(*levels, strict=True), "o-", color="C0", label="levels")
+    for h, v, k in points:
+        if k != 1:
+            ax.plot(h, v, "s", color="C3", mfc="none", label=f"fine, time step / {k}")
+    q = entry["quantities"].get(key, {})
+    grid = q.get("grid", {})
+    if q.get("uncertainty") is not None and "values" in grid:
+        fine = grid["values"][0]
+        ax.errorbar([1.0], [fine], yerr=abs(fine) * q["uncertainty"], fmt="none", color="C0",
+                    capsize=4, label="fine ± U_num")
+    if grid.get("extrapolated") is not None:
+        ax.plot([0.0], [grid["extrapolated"]], "D", color="C1",
+                label=f"extrapolated, p = {grid['order']:.2g}")
+    kind = grid.get("kind") or grid.get("note") or ""
+    ax.set_title(f"{dof}: {label}\n{kind}", fontsize=9)
+    ax.set_xlabel("h / h_fine")
+    ax.set_ylabel(label.split(" (")[0] + (f" ({unit})" if unit else ""))
+    ax.set_xlim(left=-0.1)
+    if ax.has_data():
+        ax.legend(fontsize=6)

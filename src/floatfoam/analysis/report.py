@@ -219,14 +219,15 @@ def _pictures_section(doc: Document, case_name: str, levels: list[str], build_di
         folder = layout.case_build_dir(case_name, build_dir) / "pictures" / level
         done = folder / ".drawn"
         finished = layout.marker(layout.run_dir(case_name, level, build_dir), layout.FINISHED)
-        if done.is_file() and done.stat().st_mtime >= finished.stat().st_mtime:
-            pairs = json.loads(done.read_text())
-        else:
+        pairs = json.loads(done.read_text()) if done.is_file() \
+            and done.stat().st_mtime >= finished.stat().st_mtime else []
+        if not pairs or not all((folder / name).is_file() for name, _ in pairs):
             print(f"report: drawing the flow of {case_name}/{level} (pyvista)", file=sys.stderr)
             try:
                 pairs = [(p.name, alt) for p, alt in case_pictures(case_name, level, build_dir)]
-            except InputError as err:
-                doc.paragraph(f"{level}: no pictures of the flow ({err})", note=True)
+            except Exception as err:  # noqa: BLE001 - a picture must not cost the report
+                why = err if isinstance(err, InputError) else f"{type(err).__name__}: {err}"
+                doc.paragraph(f"{level}: no pictures of the flow ({why})", note=True)
                 continue
             done.write_text(json.dumps(pairs))
         for name, alt in pairs:

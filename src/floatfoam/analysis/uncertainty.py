@@ -17,11 +17,12 @@ def read_study(case_name: str, build: Path | None = None) -> dict | None:
     return json.loads(path.read_text()) if path.is_file() else None
 
 
-def extrapolated(study: dict, dof: str, key: str) -> tuple[float, float] | None:
-    """(value, uncertainty) of the fine solution's extrapolation for the comparison: the
-    Richardson value and U_num × it; None when the grids do not converge."""
+def fine_band(study: dict, dof: str, key: str) -> tuple[float, float, float | None] | None:
+    """(φ_fine, U_num |φ_fine|, φ_ext) of one quantity: the fine level's value, the half-width
+    of its uncertainty band (the GCI bands the fine solution, not the extrapolated one) and the
+    Richardson extrapolation (None when the levels give no order); None without a U_num."""
     q = study.get("dofs", {}).get(dof, {}).get("quantities", {}).get(key)
-    if not q or q["grid"].get("extrapolated") is None or q["uncertainty"] is None:
+    if not q or q.get("uncertainty") is None or "values" not in q["grid"]:
         return None
-    value = q["grid"]["extrapolated"]
-    return value, abs(value) * q["uncertainty"]
+    fine = q["grid"]["values"][0]
+    return fine, abs(fine) * q["uncertainty"], q["grid"].get("extrapolated")

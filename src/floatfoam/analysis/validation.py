@@ -6,15 +6,19 @@ each DoF the release excites and each quantity (:data:`QUANTITIES`: the damped p
 whole record, the first period — twice the first trough's time between zero crossings,
 :func:`floatfoam.analysis.extrema.crossing_reduction` — and the damping ratio) it gives
 
-* the grid study of Celik et al. (2008) on coarse, medium, fine (:mod:`floatfoam.analysis.gci`:
+* the study of Celik et al. (2008) on coarse, medium, fine (:mod:`floatfoam.analysis.gci`:
   observed order, Richardson extrapolation, GCI_fine — or the word for how it fails to
   converge), the cell size of each level from its cell count (their eq. 1: d = 2 for a slab or
-  a wedge one cell thick, 3 in 3D);
+  a wedge one cell thick, 3 in 3D). The levels keep the Courant limit and divide the largest
+  time step by the level's factor, so they refine space **and** time together: a space-time
+  GCI, in which spatial and temporal errors of opposite signs can cancel;
 * the time-step study: the fine level against the same with its time steps halved, Roache's
-  two-grid GCI with the first order of the Euler time scheme (cases/_common/system/fvSchemes);
-* the numerical uncertainty of the fine solution, U_num = √(GCI_grid² + GCI_time²) (the two
-  estimates taken as independent, the root-sum-square of ITTC 7.5-03-01-01 (2017), the
-  procedure for uncertainty analysis in CFD verification and validation).
+  two-grid GCI of the fine level's own step with the first order of the Euler time scheme
+  (cases/_common/system/fvSchemes);
+* the numerical uncertainty of the fine level's solution, U_num = √(GCI_levels² + GCI_time²)
+  (taken as independent, the root-sum-square of ITTC 7.5-03-01-01 (2017), the procedure for
+  uncertainty analysis in CFD verification and validation; conservative, since the levels
+  already hold part of the time error).
 
 Written to ``<build>/<case>/validation/``: ``validation.json`` (every number),
 ``validation.md`` (the table) and ``convergence.png`` (each quantity against the cell size,
@@ -30,14 +34,13 @@ from pathlib import Path
 
 from floatfoam import layout
 from floatfoam.analysis import gci
-from floatfoam.analysis.compare import analyse_run, excited_dofs
-from floatfoam.analysis.extrema import crossing_reduction
+from floatfoam.analysis.compare import analyse_run, excited_dofs, first_cycles
 from floatfoam.analysis.uncertainty import STUDY_FILE
 from floatfoam.errors import InputError
 
-#: (mesh level, time-step divisor) of the four runs, in the order they are run
-STUDY = (("coarse", 1), ("medium", 1), ("fine", 1), ("fine", 2))
 TIME_STEP_DIVISOR = 2
+#: (mesh level, time-step divisor) of the four runs, in the order they are run
+STUDY = (("coarse", 1), ("medium", 1), ("fine", 1), ("fine", TIME_STEP_DIVISOR))
 TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
 #: key, label, unit of each quantity of the study
 QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
@@ -52,25 +55,26 @@ class RunValues:
     name: str
     cells: int | None
     dimension: int
+    divisor: int = 1  # of the level's time steps
     values: dict = field(default_factory=dict)  # key of QUANTITIES → value (None: failed)
     note: str = ""
 
 
-def study_runs(case_name: str, build: Path) -> list[tuple[str, Path]]:
-    """(name, run directory) of the study's runs that are finished."""
+def study_runs(case_name: str, build: Path) -> list[tuple[str, int, Path]]:
+    """(name, time-step divisor, run directory) of the study's runs that are finished."""
     out = []
     for level, divisor in STUDY:
         run = layout.run_dir(case_name, level, build, time_step_divisor=divisor)
         if layout.is_finished(run) and (run / "motion.csv").is_file():
-            out.append((layout.run_name(level, divisor), run))
+            out.append((layout.run_name(level, divisor), divisor, run))
     return out
 
 
-def _run_values(name: str, run: Path, dof: str) -> RunValues:
+def _run_values(name: str, divisor: int, run: Path, dof: str) -> RunValues:
     info_file = run / layout.MARKERS / "info.json"
     info = json.loads(info_file.read_text()) if info_file.is_file() else {}
     dimension = 3 if str(info.get("mesh", "")).startswith("3d") else 2
-    out = RunValues(name, info.get("cells"), dimension)
+    out = RunValues(name, info.get("cells"), dimension, divisor)
     try:
         time, value, result = analyse_run(run / "motion.csv", dof)
     except InputError as err:
@@ -79,8 +83,7 @@ def _run_values(name: str, run: Path, dof: str) -> RunValues:
         return out
     s = result.summary()
     try:
-        level = float(result.fit.mean_level(time[-1]))  # five periods do not settle
-        first = crossing_reduction(time, value, level=level).first_period
+        first = first_cycles(time, value, result).first_period
     except ValueError:
         first = None
     out.values = {"period": s["period_mean"], "first_period": first,
@@ -106,19 +109,21 @@ def grid_study(runs: dict[str, RunValues], key: str) -> gci.GridConvergence | st
 
 
 def time_study(runs: dict[str, RunValues], key: str) -> gci.TwoLevel | str:
+    """The fine level against its halved time steps (two_level's "fine" is the halved run)."""
     fine, halved = runs.get("fine"), runs.get(layout.run_name("fine", TIME_STEP_DIVISOR))
     if fine is None or halved is None:
         return "needs the fine level and its halved time step finished"
     a, b = halved.values.get(key), fine.values.get(key)
-    if a is None or b is None:
+    if a is None or b is None or not (math.isfinite(a) and math.isfinite(b)):
         return "a record could not be analysed"
     return gci.two_level(a, b, TIME_STEP_DIVISOR, TIME_ORDER)
 
 
 def numerical_uncertainty(grid, time) -> float | None:
-    """U_num = √(GCI_grid² + GCI_time²) of the fine solution, a fraction (None: unknown)."""
+    """U_num = √(GCI_grid² + GCI_time²) of the fine level's solution (its own time step: the
+    coarser of the time pair, Roache's GCI_coarse), a fraction; None when unknown."""
     g = grid.gci_fine if isinstance(grid, gci.GridConvergence) else None
-    t = time.gci_fine if isinstance(time, gci.TwoLevel) else None
+    t = time.gci_coarse if isinstance(time, gci.TwoLevel) else None
     return None if g is None or t is None else math.hypot(g, t)
 
 
@@ -126,12 +131,13 @@ def validate_case(case, build: Path | None = None) -> dict:
     """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict."""
     build = Path(build or layout.build_dir())
     found = study_runs(case.name, build)
-    study = {"case": case.name, "runs": [name for name, _ in found], "dofs": {},
+    study = {"case": case.name, "runs": [name for name, _, _ in found], "dofs": {},
              "time_order": TIME_ORDER, "time_step_divisor": TIME_STEP_DIVISOR}
     for dof in excited_dofs(case, {}):
-        runs = {name: _run_values(name, run, dof) for name, run in found}
-        entry = {"runs": {name: {"cells": r.cells, "dimension": r.dimension, **r.values,
-                                 "note": r.note} for name, r in runs.items()},
+        runs = {name: _run_values(name, k, run, dof) for name, k, run in found}
+        entry = {"runs": {name: {"cells": r.cells, "dimension": r.dimension,
+                                 "divisor": r.divisor, **r.values, "note": r.note}
+                          for name, r in runs.items()},
                  "quantities": {}}
         for key, _, _ in QUANTITIES:
             grid, time = grid_study(runs, key), time_study(runs, key)
@@ -152,11 +158,14 @@ def _pct(value) -> str:
 
 
 RUNS_HEADER = ("run", "cells", *(label for _, label, _ in QUANTITIES), "note")
-GCI_HEADER = ("quantity", "convergence", "order p", "extrapolated", "e_a21", "GCI_fine (grid)",
-              "Δ with dt/2", "GCI (time)", "U_num")
-METHOD = ("Grid study: Celik et al. (2008), J. Fluids Eng. 130:078001 (cell size from the cell "
-          "count, safety factor 1.25). Time: the fine level against its time steps halved, "
-          "Roache's two-grid GCI (F_s = 3, first order). U_num = √(GCI_grid² + GCI_time²).")
+GCI_HEADER = ("quantity", "convergence", "order p", "extrapolated", "e_a21",
+              "GCI_fine (levels)", "Δ with dt/2", "GCI (time)", "U_num")
+METHOD = ("Levels: Celik et al. (2008), J. Fluids Eng. 130:078001 (cell size from the cell "
+          "count, safety factor 1.25); the levels refine space and time together (the Courant "
+          "limit is the same, the largest step shrinks with the cell), so this is a space-time "
+          "GCI. Time alone: the fine level against its time steps halved, Roache's two-grid "
+          "GCI of the fine level's own step (F_s = 3, first order). U_num = "
+          "√(GCI_levels² + GCI_time²), the band around the fine level's value.")
 
 
 def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]]]]:
@@ -173,7 +182,7 @@ def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]
                          _num(g.get("extrapolated")), _pct(g.get("relative_error")),
                          _pct(g.get("gci_fine")),
                          _pct(t.get("relative_error")) if "values" in t else t.get("note", ""),
-                         _pct(t.get("gci_fine")), _pct(q["uncertainty"])])
+                         _pct(t.get("gci_coarse")), _pct(q["uncertainty"])])
         out.append((dof, runs, rows))
     return out
 
@@ -196,13 +205,18 @@ def write_study(study: dict, out_dir: Path) -> list[Path]:
 
     out_dir.mkdir(parents=True, exist_ok=True)
     paths = [out_dir / STUDY_FILE, out_dir / "validation.md", out_dir / "convergence.png"]
-    paths[0].write_text(json.dumps(study, indent=2, default=_json_default) + "\n")
+    paths[0].write_text(json.dumps(_finite(study), indent=2, allow_nan=False) + "\n")
     paths[1].write_text(study_markdown(study))
     plot_convergence(study, QUANTITIES, paths[2])
     return paths
 
 
-def _json_default(value):
+def _finite(value):
+    """The study with NaN and inf as None (JSON has neither)."""
     if isinstance(value, float) and not math.isfinite(value):
         return None
-    raise TypeError(f"not JSON serialisable: {value!r}")
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v) for v in value]
+    return value

@@ -14,8 +14,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--no-potential", dest="potential", action="store_false",
                         help="leave potential flow out of the comparison")
     parser.add_argument("--no-pictures", dest="pictures", action="store_false",
-                        help="leave the pictures of the flow out (pyvista; ~15 s per run the "
-                             "first time, reused after)")
+                        help="leave the pictures of the flow out (pyvista; 10-20 s per run "
+                             "the first time, reused after)")
 
 
 def register(sub) -> None:

@@ -42,15 +42,17 @@ class RunResult:
     already_finished: bool = False
 
 
-def settings_digest(case: Case, level: str) -> str:
+def settings_digest(case: Case, level: str, *, legacy: bool = False) -> str:
     """Hash of what a run depends on: the case, the level, the shared dictionaries and the
-    solver binary. Not the case's words ([case] title and description) nor its [reference]
-    measurements: adding a measurement must not make a finished run look foreign."""
+    solver binary. Not the case's words ([case] title, description, and the name of the case
+    it extends: its tables are in) nor its [reference] measurements: adding a measurement must
+    not make a finished run look foreign.
+    ``legacy``: the hash of the whole case file, as runs stamped before 2026-11-30 have it."""
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()
-                   if k not in ("title", "description")}
-    digest = hashlib.sha256(json.dumps({"case": raw, "level": level}, sort_keys=True,
-                                       default=str).encode())
+                   if k not in ("title", "description", "extends")}
+    digest = hashlib.sha256(json.dumps({"case": case.raw if legacy else raw, "level": level},
+                                       sort_keys=True, default=str).encode())
     for path in sorted(layout.COMMON_DIR.rglob("*")):
         if path.is_file():
             digest.update(path.read_bytes())
@@ -77,7 +79,8 @@ def prepare(case: Case, level: str, np_: int, force: bool,
     if run_dir.exists():
         old = (stamp.read_text().split() if stamp.exists() else []) + ["?", "?"]
         finished = layout.is_finished(run_dir)
-        same = old[0] == digest and old[1] == str(np_)
+        known = (digest, settings_digest(case, level, legacy=True))
+        same = old[0] in known and old[1] == str(np_)
         if force:
             moved = runner.move_aside(run_dir)
             print(f"[{case.name}/{run_dir.name}] earlier run moved to {moved}")
