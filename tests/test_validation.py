@@ -216,3 +216,18 @@ def test_a_run_stamped_before_the_digest_changed_is_still_ours(tmp_path):
     (run / layout.MARKERS / "settings").write_text("0123456789abcdef 2\n")
     with pytest.raises(InputError, match="other settings"):
         prepare(case, "coarse", 2, False, tmp_path)
+
+
+def test_a_study_checks_its_four_runs_before_the_first(tmp_path):
+    """A fine run of other settings is refused before the coarse one has started (no hours of
+    CFD lost to a refusal at the third run): one line, exit 2, nothing written."""
+    fine = tmp_path / "cylinder_heave" / "fine" / layout.MARKERS
+    fine.mkdir(parents=True)
+    (fine / "settings").write_text("0123456789abcdef 2\n")
+    before = sorted(tmp_path.rglob("*"))
+    env = {"FLOATFOAM_BUILD": str(tmp_path), "PATH": "/usr/bin:/bin"}
+    out = subprocess.run([sys.executable, "-m", "floatfoam.cli", "validate", "cylinder_heave"],
+                         env=env, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 2 and "other settings" in out.stderr, out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1
+    assert sorted(tmp_path.rglob("*")) == before

@@ -32,8 +32,7 @@ def run(args) -> int:
     from floatfoam.analysis.validation import STUDY, study_markdown, validate_case, write_study
     from floatfoam.case import load_case
     from floatfoam.cli.run import EXIT_LOCKED
-    from floatfoam.foam.driver import check_ranks, run_case, solver_path
-    from floatfoam.foam.render import end_time_of
+    from floatfoam.foam.driver import check_ranks, check_run, run_case
     from floatfoam.foam.runlock import RunLockedError
     from floatfoam.foam.runner import RunError
     from floatfoam.hydrostatics.theory import equilibrium
@@ -42,9 +41,9 @@ def run(args) -> int:
     check_ranks(args.np, None)
     build = layout.build_dir()
     if not args.no_run:
-        solver_path(case)
-        end_time_of(case)  # a capsizing case without an end time is refused here
         eq = equilibrium(case)
+        for level, divisor in STUDY:  # every run checked before the first starts
+            check_run(case, level, args.np, eq, build_dir=build, time_step_divisor=divisor)
         names = [layout.run_name(level, k) for level, k in STUDY]
         print(f"[validate {case.name}] {len(STUDY)} runs on {args.np} rank(s): "
               f"{', '.join(names)} (finished ones are reused, interrupted ones resume)",

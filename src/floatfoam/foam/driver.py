@@ -70,6 +70,25 @@ def solver_path(case: Case) -> Path:
     return path
 
 
+def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None,
+                 divisor: int = 1) -> tuple[Path, bool | None]:
+    """The run directory and what it holds: None (nothing), True (a finished run of these
+    settings), False (an unfinished one to resume). Raises InputError when it holds a run of
+    other settings (or --np). Writes nothing."""
+    run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor)
+    if not run_dir.exists():
+        return run_dir, None
+    stamp = run_dir / layout.MARKERS / "settings"
+    old = (stamp.read_text().split() if stamp.exists() else []) + ["?", "?"]
+    finished = layout.is_finished(run_dir)
+    known = (settings_digest(case, level), settings_digest(case, level, legacy=True))
+    if old[0] not in known or old[1] != str(np_):
+        what = "a finished run" if finished else "an unfinished run"
+        raise InputError(f"{run_dir} holds {what} with other settings (or --np); valid: "
+                         "the same settings to resume, or --force to move it aside")
+    return run_dir, finished
+
+
 def prepare(case: Case, level: str, np_: int, force: bool,
             build_dir: Path | None = None, divisor: int = 1) -> tuple[Path, bool, bool]:
     """The run directory, whether it resumes, and whether it is already finished."""
@@ -77,21 +96,12 @@ def prepare(case: Case, level: str, np_: int, force: bool,
     digest = settings_digest(case, level)
     stamp = run_dir / layout.MARKERS / "settings"
     if run_dir.exists():
-        old = (stamp.read_text().split() if stamp.exists() else []) + ["?", "?"]
-        finished = layout.is_finished(run_dir)
-        known = (digest, settings_digest(case, level, legacy=True))
-        same = old[0] in known and old[1] == str(np_)
         if force:
             moved = runner.move_aside(run_dir)
             print(f"[{case.name}/{run_dir.name}] earlier run moved to {moved}")
-        elif finished and same:
-            return run_dir, False, True
-        elif finished or not same:
-            what = "a finished run" if finished else "an unfinished run"
-            raise InputError(f"{run_dir} holds {what} with other settings (or --np); valid: "
-                             "the same settings to resume, or --force to move it aside")
         else:
-            return run_dir, True, False
+            _, finished = existing_run(case, level, np_, build_dir, divisor)
+            return run_dir, not finished, bool(finished)
     (run_dir / layout.MARKERS).mkdir(parents=True)
     stamp.write_text(f"{digest} {np_}\n")
     return run_dir, False, False
@@ -132,6 +142,19 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
                       "finishing; this run takes its place", file=sys.stderr)
             return _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh,
                                lock, label, time_step_divisor)
+
+
+def check_run(case: Case, level: str, np_: int, equilibrium: Equilibrium, *,
+              build_dir: Path | None = None, time_step_divisor: int = 1) -> None:
+    """Everything :func:`run_case` checks before it writes, for a run to come (a study checks
+    its four runs before the first starts): ranks, solver, the mesh's plan, the end time and
+    what the run directory holds. Raises InputError; writes nothing."""
+    check_ranks(np_, None)
+    case = smaller_steps(case, time_step_divisor)
+    solver_path(case)
+    domain.plan(case, level, release_state(case, equilibrium)["pose"], local=True)
+    end_time_of(case)
+    existing_run(case, level, np_, build_dir, time_step_divisor)
 
 
 def smaller_steps(case: Case, divisor: int) -> Case:
