@@ -25,6 +25,7 @@ import numpy as np
 
 from floatfoam import layout
 from floatfoam.errors import InputError
+from floatfoam.foam.timedirs import time_folders
 
 SLABS, WEDGES, SOLIDS = ("2d", "ogrid"), ("wedge",), ("3d", "3d-half")
 WATER = "alpha.water"
@@ -114,13 +115,7 @@ def open_run(run_dir) -> Run:
 
 def _decomposed(run: Path) -> bool:
     """Whether the fields are in processor* folders only (no reconstructed time beyond 0)."""
-    def is_time(p: Path) -> bool:
-        try:
-            return p.is_dir() and float(p.name) > 0.0
-        except ValueError:
-            return False
-
-    return any(run.glob("processor*")) and not any(is_time(p) for p in run.iterdir())
+    return any(run.glob("processor*")) and not time_folders(run)
 
 
 def first_trough(run: Run) -> float:
