@@ -37,6 +37,7 @@ from floatfoam.analysis import gci
 from floatfoam.analysis.compare import analyse_run, excited_dofs, first_cycles
 from floatfoam.analysis.uncertainty import STUDY_FILE
 from floatfoam.errors import InputError
+from floatfoam.jsonfile import dump_json
 
 TIME_STEP_DIVISOR = 2
 #: (mesh level, time-step divisor) of the four runs, in the order they are run
@@ -205,18 +206,7 @@ def write_study(study: dict, out_dir: Path) -> list[Path]:
 
     out_dir.mkdir(parents=True, exist_ok=True)
     paths = [out_dir / STUDY_FILE, out_dir / "validation.md", out_dir / "convergence.png"]
-    paths[0].write_text(json.dumps(_finite(study), indent=2, allow_nan=False) + "\n")
+    paths[0].write_text(dump_json(study) + "\n")
     paths[1].write_text(study_markdown(study))
     plot_convergence(study, QUANTITIES, paths[2])
     return paths
-
-
-def _finite(value):
-    """The study with NaN and inf as None (JSON has neither)."""
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    if isinstance(value, dict):
-        return {k: _finite(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_finite(v) for v in value]
-    return value
