@@ -17,7 +17,7 @@ from floatfoam.analysis.compare import compare_case
 from floatfoam.analysis.extrema import crossing_reduction
 from floatfoam.analysis.plots import free_decay_curve
 from floatfoam.analysis.report import Sources, build_report
-from floatfoam.analysis.validation import STUDY, validate_case, write_study
+from floatfoam.analysis.validation import study, validate_case, write_study
 from floatfoam.case import load_case
 from floatfoam.errors import InputError
 from floatfoam.foam.driver import prepare, settings_digest, smaller_steps
@@ -92,18 +92,21 @@ def _synthetic_run(build, name, cells, period, zeta, dt):
     layout.mark_done(run, layout.FINISHED)
 
 
-def test_study_of_synthetic_records_finds_their_order(tmp_path):
+@pytest.mark.parametrize("time_level", ["medium", "fine"])
+def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level):
     """Periods following T = 0.6 + 0.02 (h/h_f)² on the three levels and ζ constant, and the
-    halved time step 0.3 % shorter than the fine level: the study says monotonic convergence
-    of order 2 towards 0.6 s, and the fine level's time GCI is Roache's 3·2·0.3 %."""
+    halved time step 0.3 % shorter than its level: the study says monotonic convergence of
+    order 2 towards 0.6 s, and the time GCI is Roache's 3·2·0.3 %, whichever level is halved."""
     cells = {"coarse": 11280, "medium": 22857, "fine": 45120}
-    for level, divisor in STUDY:
+    assert study(time_level)[-1] == (time_level, 2)
+    for level, divisor in study(time_level):
         h = math.sqrt(cells["fine"] / cells[level])
         period = (0.6 + 0.02 * h**2) * (0.997 if divisor > 1 else 1.0)
         _synthetic_run(tmp_path, layout.run_name(level, divisor), cells[level], period, 0.1,
                        0.002)
-    study = validate_case(load_case("cylinder_heave"), tmp_path)
-    period = study["dofs"]["heave"]["quantities"]["period"]
+    result = validate_case(load_case("cylinder_heave"), tmp_path, time_level)
+    assert result["runs"][-1] == f"{time_level}-dt2"
+    period = result["dofs"]["heave"]["quantities"]["period"]
     assert period["grid"]["kind"] == gci.MONOTONIC
     # the decay fit of a 2 ms-sampled record is off by up to ~5e-5 s here, and the level
     # differences are 0.02–0.04 s: the order within 2 %, the limit within 2e-4 s
@@ -113,9 +116,10 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path):
     assert period["time"]["gci_coarse"] == pytest.approx(3 * 2 * 0.003, rel=0.02)
     assert period["uncertainty"] == pytest.approx(
         math.hypot(period["grid"]["gci_fine"], period["time"]["gci_coarse"]))
-    paths = write_study(study, tmp_path / "cylinder_heave" / "validation")
+    paths = write_study(result, tmp_path / "cylinder_heave" / "validation")
     assert all(p.is_file() and p.stat().st_size > 0 for p in paths)
     assert "monotonic convergence" in paths[1].read_text()
+    assert f"the {time_level} level against its time steps halved" in paths[1].read_text()
     # the report gathers it: the study's tables and figure, and the extrapolated row
     cases = tmp_path / "cases"
     shutil.copytree(layout.CASES_DIR / "cylinder_heave", cases / "cylinder_heave")
@@ -144,6 +148,7 @@ def test_smaller_steps_is_another_run():
     (["run", "cylinder_heave", "--dt-divisor", "0"], "--dt-divisor"),
     (["validate", "cylinder_heave", "--no-run"], "no finished run"),
     (["validate", "cylinder_heave", "--np", "0"], "--np"),
+    (["validate", "cylinder_heave", "--time-level", "coarse"], "--time-level"),
 ])
 def test_bad_input_is_one_line_and_writes_nothing(tmp_path, argv, word):
     env = {"FLOATFOAM_BUILD": str(tmp_path), "PATH": "/usr/bin:/bin"}

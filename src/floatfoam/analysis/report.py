@@ -243,7 +243,7 @@ def _pictures_section(doc: Document, case_name: str, levels: list[str], build_di
 def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir: Path) -> None:
     """The grid and time-step study of ``floatfoam validate``, when it has been run."""
     from floatfoam.analysis.uncertainty import read_study
-    from floatfoam.analysis.validation import GCI_HEADER, METHOD, RUNS_HEADER, study_tables
+    from floatfoam.analysis.validation import GCI_HEADER, RUNS_HEADER, method, study_tables
 
     study = read_study(case_name, build_dir)
     if study is None:
@@ -253,7 +253,7 @@ def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir:
         doc.paragraph(f"{dof}:")
         doc.table(RUNS_HEADER, runs)
         doc.table(GCI_HEADER, rows)
-    doc.paragraph(METHOD, note=True)
+    doc.paragraph(method(study.get("time_step_level", "fine")), note=True)
     figure = layout.case_build_dir(case_name, build_dir) / "validation" / "convergence.png"
     if figure.is_file():
         name = f"{case_name}/convergence.png"

@@ -1,6 +1,6 @@
 """Verification of a case's CFD: grid and time-step convergence of its period and damping.
 
-``floatfoam validate CASE`` runs the case at the three mesh levels and once more at the fine
+``floatfoam validate CASE`` runs the case at the three mesh levels and once more at the medium
 level with its time steps halved (:data:`STUDY`); this module analyses those four runs. For
 each DoF the release excites and each quantity (:data:`QUANTITIES`: the damped period of the
 whole record, the first period — twice the first trough's time between zero crossings,
@@ -12,9 +12,14 @@ whole record, the first period — twice the first trough's time between zero cr
   a wedge one cell thick, 3 in 3D). The levels keep the Courant limit and divide the largest
   time step by the level's factor, so they refine space **and** time together: a space-time
   GCI, in which spatial and temporal errors of opposite signs can cancel;
-* the time-step study: the fine level against the same with its time steps halved, Roache's
-  two-grid GCI of the fine level's own step with the first order of the Euler time scheme
-  (cases/_common/system/fvSchemes);
+* the time-step study: the medium level against the same with its time steps halved, Roache's
+  two-grid GCI of the medium level's own step with the first order of the Euler time scheme
+  (cases/_common/system/fvSchemes). It is taken for the fine level's time error, an upper
+  bound: the fine level's steps are never longer than the medium's (same Courant limit on
+  smaller cells, largest step divided by the level factor), and a first-order error shrinks
+  with the step. Halving at the medium level costs about a quarter of halving at the fine
+  one — the fine level with dt/2 was 60 % of a whole study (cylinder_heave: 1705 of 2736 s
+  wall on 2 ranks) — which keeps ``make validate`` of a 2D case within the hour;
 * the numerical uncertainty of the fine level's solution, U_num = √(GCI_levels² + GCI_time²)
   (taken as independent, the root-sum-square of ITTC 7.5-03-01-01 (2017), the procedure for
   uncertainty analysis in CFD verification and validation; conservative, since the levels
@@ -40,8 +45,21 @@ from floatfoam.errors import InputError
 from floatfoam.jsonfile import dump_json
 
 TIME_STEP_DIVISOR = 2
-#: (mesh level, time-step divisor) of the four runs, in the order they are run
-STUDY = (("coarse", 1), ("medium", 1), ("fine", 1), ("fine", TIME_STEP_DIVISOR))
+#: the level whose time steps are halved by default (module docstring: why); "fine" gives the
+#: fine level's own time error, for four times the cost
+TIME_STEP_LEVEL = "medium"
+TIME_STEP_LEVELS = ("medium", "fine")
+
+
+def study(time_level: str = TIME_STEP_LEVEL) -> tuple[tuple[str, int], ...]:
+    """(mesh level, time-step divisor) of the four runs, in the order they are run."""
+    if time_level not in TIME_STEP_LEVELS:
+        raise InputError(f"--time-level {time_level!r} is not a level whose time steps a "
+                         "study halves; valid: " + ", ".join(TIME_STEP_LEVELS))
+    return ("coarse", 1), ("medium", 1), ("fine", 1), (time_level, TIME_STEP_DIVISOR)
+
+
+STUDY = study()
 TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
 #: key, label, unit of each quantity of the study
 QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
@@ -61,10 +79,11 @@ class RunValues:
     note: str = ""
 
 
-def study_runs(case_name: str, build: Path) -> list[tuple[str, int, Path]]:
+def study_runs(case_name: str, build: Path,
+               time_level: str = TIME_STEP_LEVEL) -> list[tuple[str, int, Path]]:
     """(name, time-step divisor, run directory) of the study's runs that are finished."""
     out = []
-    for level, divisor in STUDY:
+    for level, divisor in study(time_level):
         run = layout.run_dir(case_name, level, build, time_step_divisor=divisor)
         if layout.is_finished(run) and (run / "motion.csv").is_file():
             out.append((layout.run_name(level, divisor), divisor, run))
@@ -109,31 +128,35 @@ def grid_study(runs: dict[str, RunValues], key: str) -> gci.GridConvergence | st
     return gci.three_grids(*values, h[1] / h[0], h[2] / h[1])
 
 
-def time_study(runs: dict[str, RunValues], key: str) -> gci.TwoLevel | str:
-    """The fine level against its halved time steps (two_level's "fine" is the halved run)."""
-    fine, halved = runs.get("fine"), runs.get(layout.run_name("fine", TIME_STEP_DIVISOR))
-    if fine is None or halved is None:
-        return "needs the fine level and its halved time step finished"
-    a, b = halved.values.get(key), fine.values.get(key)
+def time_study(runs: dict[str, RunValues], key: str,
+               time_level: str = TIME_STEP_LEVEL) -> gci.TwoLevel | str:
+    """``time_level`` against its halved time steps (two_level's "fine" is the halved run)."""
+    level = runs.get(time_level)
+    halved = runs.get(layout.run_name(time_level, TIME_STEP_DIVISOR))
+    if level is None or halved is None:
+        return f"needs the {time_level} level and its halved time step finished"
+    a, b = halved.values.get(key), level.values.get(key)
     if a is None or b is None or not (math.isfinite(a) and math.isfinite(b)):
         return "a record could not be analysed"
     return gci.two_level(a, b, TIME_STEP_DIVISOR, TIME_ORDER)
 
 
 def numerical_uncertainty(grid, time) -> float | None:
-    """U_num = √(GCI_grid² + GCI_time²) of the fine level's solution (its own time step: the
-    coarser of the time pair, Roache's GCI_coarse), a fraction; None when unknown."""
+    """U_num = √(GCI_grid² + GCI_time²) of the fine level's solution, a fraction; None when
+    unknown. GCI_time is the time-step level's own step (the coarser of the time pair,
+    Roache's GCI_coarse), an upper bound of the fine level's (module docstring)."""
     g = grid.gci_fine if isinstance(grid, gci.GridConvergence) else None
     t = time.gci_coarse if isinstance(time, gci.TwoLevel) else None
     return None if g is None or t is None else math.hypot(g, t)
 
 
-def validate_case(case, build: Path | None = None) -> dict:
+def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_LEVEL) -> dict:
     """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict."""
     build = Path(build or layout.build_dir())
-    found = study_runs(case.name, build)
-    study = {"case": case.name, "runs": [name for name, _, _ in found], "dofs": {},
-             "time_order": TIME_ORDER, "time_step_divisor": TIME_STEP_DIVISOR}
+    found = study_runs(case.name, build, time_level)
+    out = {"case": case.name, "runs": [name for name, _, _ in found], "dofs": {},
+           "time_order": TIME_ORDER, "time_step_divisor": TIME_STEP_DIVISOR,
+           "time_step_level": time_level}
     for dof in excited_dofs(case, {}):
         runs = {name: _run_values(name, k, run, dof) for name, k, run in found}
         entry = {"runs": {name: {"cells": r.cells, "dimension": r.dimension,
@@ -141,13 +164,13 @@ def validate_case(case, build: Path | None = None) -> dict:
                           for name, r in runs.items()},
                  "quantities": {}}
         for key, _, _ in QUANTITIES:
-            grid, time = grid_study(runs, key), time_study(runs, key)
+            grid, time = grid_study(runs, key), time_study(runs, key, time_level)
             entry["quantities"][key] = {
                 "grid": grid.as_dict() if not isinstance(grid, str) else {"note": grid},
                 "time": time.as_dict() if not isinstance(time, str) else {"note": time},
                 "uncertainty": numerical_uncertainty(grid, time)}
-        study["dofs"][dof] = entry
-    return study
+        out["dofs"][dof] = entry
+    return out
 
 
 def _num(value, spec=".5g") -> str:
@@ -161,12 +184,17 @@ def _pct(value) -> str:
 RUNS_HEADER = ("run", "cells", *(label for _, label, _ in QUANTITIES), "note")
 GCI_HEADER = ("quantity", "convergence", "order p", "extrapolated", "e_a21",
               "GCI_fine (levels)", "Δ with dt/2", "GCI (time)", "U_num")
-METHOD = ("Levels: Celik et al. (2008), J. Fluids Eng. 130:078001 (cell size from the cell "
-          "count, safety factor 1.25); the levels refine space and time together (the Courant "
-          "limit is the same, the largest step shrinks with the cell), so this is a space-time "
-          "GCI. Time alone: the fine level against its time steps halved, Roache's two-grid "
-          "GCI of the fine level's own step (F_s = 3, first order). U_num = "
-          "√(GCI_levels² + GCI_time²), the band around the fine level's value.")
+def method(time_level: str = TIME_STEP_LEVEL) -> str:
+    """How the study's numbers are made, for the foot of its table."""
+    bound = ("" if time_level == "fine" else
+             ", an upper bound of the fine level's, whose steps are no longer")
+    return ("Levels: Celik et al. (2008), J. Fluids Eng. 130:078001 (cell size from the cell "
+            "count, safety factor 1.25); the levels refine space and time together (the "
+            "Courant limit is the same, the largest step shrinks with the cell), so this is a "
+            f"space-time GCI. Time alone: the {time_level} level against its time steps "
+            f"halved, Roache's two-grid GCI of the {time_level} level's own step (F_s = 3, "
+            f"first order){bound}. U_num = √(GCI_levels² + GCI_time²), the band around the "
+            "fine level's value.")
 
 
 def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]]]]:
@@ -197,7 +225,7 @@ def study_markdown(study: dict) -> str:
     lines = [f"# {study['case']}: grid and time-step convergence", ""]
     for dof, runs, rows in study_tables(study):
         lines += [f"## {dof}", "", *table(RUNS_HEADER, runs), *table(GCI_HEADER, rows)]
-    return "\n".join([*lines, METHOD, ""])
+    return "\n".join([*lines, method(study.get("time_step_level", "fine")), ""])
 
 
 def write_study(study: dict, out_dir: Path) -> list[Path]:

@@ -1,8 +1,9 @@
 """``floatfoam validate CASE``: the grid and time-step convergence study of a case's CFD.
 
-Runs (or resumes, or reuses when finished) the coarse, medium and fine levels and the fine level
-with its time steps halved, then writes ``<build>/<case>/validation/`` (validation.json,
-validation.md, convergence.png: :mod:`floatfoam.analysis.validation`).
+Runs (or resumes, or reuses when finished) the coarse, medium and fine levels and the medium
+level (``--time-level fine``: the fine one) with its time steps halved, then writes
+``<build>/<case>/validation/`` (validation.json, validation.md, convergence.png:
+:mod:`floatfoam.analysis.validation`).
 """
 
 from __future__ import annotations
@@ -20,6 +21,10 @@ def register(sub) -> None:
                        "2008) of a case's period and damping")
     add_case_arguments(p)
     p.add_argument("--np", type=int, default=2, help="MPI ranks of every run (default 2)")
+    p.add_argument("--time-level", default="medium", metavar="LEVEL",
+                   help="the level run once more with its time steps halved: medium "
+                   "(default: an upper bound of the fine level's time error) or fine (its own, "
+                   "for about four times the cost)")
     p.add_argument("--no-run", action="store_true",
                    help="analyse the finished runs only; run nothing")
     p.set_defaults(func=run)
@@ -29,7 +34,7 @@ def run(args) -> int:
     """Exit codes as ``floatfoam run``'s: 0 done, 1 a run failed, 2 bad input, 75 another run
     holds a run directory, 128 + signal when interrupted (the same command resumes)."""
     from floatfoam import layout
-    from floatfoam.analysis.validation import STUDY, study_markdown, validate_case, write_study
+    from floatfoam.analysis.validation import study, study_markdown, validate_case, write_study
     from floatfoam.case import load_case
     from floatfoam.cli.run import EXIT_LOCKED
     from floatfoam.foam.driver import check_ranks, check_run, run_case
@@ -39,21 +44,22 @@ def run(args) -> int:
 
     case = load_case(args.case, args.overrides)
     check_ranks(args.np, None)
+    runs = study(args.time_level)
     build = layout.build_dir()
     if not args.no_run:
         eq = equilibrium(case)
-        for level, divisor in STUDY:  # every run checked before the first starts
+        for level, divisor in runs:  # every run checked before the first starts
             check_run(case, level, args.np, eq, build_dir=build, time_step_divisor=divisor)
-        names = [layout.run_name(level, k) for level, k in STUDY]
-        print(f"[validate {case.name}] {len(STUDY)} runs on {args.np} rank(s): "
+        names = [layout.run_name(level, k) for level, k in runs]
+        print(f"[validate {case.name}] {len(runs)} runs on {args.np} rank(s): "
               f"{', '.join(names)} (finished ones are reused, interrupted ones resume)",
               file=sys.stderr)
-        for i, (level, divisor) in enumerate(STUDY, 1):
+        for i, (level, divisor) in enumerate(runs, 1):
             name = layout.run_name(level, divisor)
             start = time.monotonic()
-            print(f"[validate {case.name}] run {i}/{len(STUDY)}: {name}", file=sys.stderr)
+            print(f"[validate {case.name}] run {i}/{len(runs)}: {name}", file=sys.stderr)
             try:
-                result = run_case(case, level, args.np, equilibrium=eq,
+                done = run_case(case, level, args.np, equilibrium=eq,
                                   time_step_divisor=divisor)
             except RunError as err:
                 print(f"floatfoam validate: run {name} failed: {err}", file=sys.stderr)
@@ -61,16 +67,16 @@ def run(args) -> int:
             except RunLockedError as err:
                 print(f"floatfoam validate: {err}", file=sys.stderr)
                 return EXIT_LOCKED
-            what = "already finished" if result.already_finished else \
+            what = "already finished" if done.already_finished else \
                 f"{time.monotonic() - start:.0f} s wall"
-            print(f"[validate {case.name}] {name}: {result.info.get('cells')} cells, {what}",
+            print(f"[validate {case.name}] {name}: {done.info.get('cells')} cells, {what}",
                   file=sys.stderr)
-    study = validate_case(case, build)
-    if not study["runs"]:
+    result = validate_case(case, build, args.time_level)
+    if not result["runs"]:
         raise InputError(f"case {case.name!r} has no finished run under {build}; valid: run "
                          "`floatfoam validate` without --no-run first")
     out = layout.case_build_dir(case.name, build) / "validation"
-    paths = write_study(study, Path(out))
-    print(study_markdown(study))
+    paths = write_study(result, Path(out))
+    print(study_markdown(result))
     print("written: " + ", ".join(str(p) for p in paths))
     return 0
