@@ -18,8 +18,8 @@ export MPLBACKEND := Agg
 # the CFD cases: `make <case>` runs one (LEVEL=coarse|medium|fine NP=2 SET="...")
 CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cylinder_capsize \
 	parabolic_cylinder hyperbolic_cylinder box_bilge box_bilge_heave sphere sphere_25mm sphere_50mm \
-	ellipsoid_roll stl_pontoon lab_sphere lab_sphere_03D lab_sphere_05D flume_section_roll \
-	flume_section_heave
+	ellipsoid_roll stl_pontoon superellipsoid_buoy lab_sphere lab_sphere_03D lab_sphere_05D \
+	flume_section_roll flume_section_heave
 .PHONY: $(CFD_CASES) help setup run test mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures bench-theory bench-potential bench-cfd clean
 
 help:  ## list the targets
@@ -76,7 +76,7 @@ validate: setup  ## grid + time-step convergence (GCI) of CASE: coarse, medium, 
 	$(FF) validate $(CASE) --np $(NP) $(if $(TIME_LEVEL),--time-level $(TIME_LEVEL)) $(SETARGS)
 
 bench-cfd: setup  ## every CFD case, 1 s simulated (FULL=1: whole records): cells, steps, wall, 1 vs 2 ranks
-	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2 $(if $(CASES),--cases $(CASES)) \
+	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2 --cases $(or $(CASES),$(CFD_CASES)) \
 		$(if $(FULL),--full)
 
 bench-theory: setup  ## time `floatfoam theory` for every case (target ≤ 0.6 s median each)

@@ -6,7 +6,7 @@ its end time × the wall time per simulated second): cells, mesh kind, time step
 (render, mesh and solver included) and wall time per simulated second. Prints a table and
 writes build/bench/cfd.json. Each run goes to build/bench/ and is moved aside when rerun.
 
-    .venv/bin/python scripts/bench_cfd.py [--cases A B] [--levels coarse] [--ranks 1 2]
+    .venv/bin/python scripts/bench_cfd.py --cases A B [--levels coarse] [--ranks 1 2]
                                           [--end-time 1.0 | --full]
 """
 
@@ -22,18 +22,15 @@ from floatfoam.foam.driver import run_case
 from floatfoam.foam.render import end_time_of
 from floatfoam.layout import ROOT, build_dir
 
-CASES = ["cylinder_heave", "elliptic_cylinder", "elliptic_cylinder_roll",
-         "elliptic_cylinder_capsize", "parabolic_cylinder", "hyperbolic_cylinder", "box_bilge",
-         "box_bilge_heave", "sphere", "sphere_25mm", "sphere_50mm", "ellipsoid_roll",
-         "stl_pontoon"]
 # the 3D cases: ~0.3 s of wall per 1.1 ms step on 2 ranks (ellipsoid_roll, half domain), ~0.6 s
-# per step (stl_pontoon, 155,916 tetrahedra in the whole tank)
-SHORTER = {"ellipsoid_roll": 0.5, "stl_pontoon": 0.2}
+# per step (stl_pontoon, 155,916 tetrahedra in the whole tank); superellipsoid_buoy as the pontoon
+SHORTER = {"ellipsoid_roll": 0.5, "stl_pontoon": 0.2, "superellipsoid_buoy": 0.2}
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--cases", nargs="+", default=CASES)
+    parser.add_argument("--cases", nargs="+", required=True,
+                        help="the cases (make bench-cfd: the Makefile's CFD_CASES)")
     parser.add_argument("--levels", nargs="+", default=["coarse"])
     parser.add_argument("--ranks", nargs="+", type=int, default=[1, 2])
     parser.add_argument("--end-time", type=float, default=1.0)

@@ -127,6 +127,8 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level):
                  sources=Sources.default(include_potential=False))
     md = (tmp_path / "report" / "index.md").read_text()
     assert "### Grid and time-step convergence" in md
+    assert "## Verification: grid and time-step convergence" in md
+    assert "| cylinder_heave | heave | 4 | 0.6" in md  # the summary line of the study
     assert "| heave | CFD fine ± U_num | 0.6" in md
     assert (tmp_path / "report" / "cylinder_heave" / "convergence.png").is_file()
 

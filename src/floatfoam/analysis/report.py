@@ -261,6 +261,26 @@ def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir:
         doc.image(name, f"{case_name} grid and time-step convergence")
 
 
+def _verification_summary(doc: Document, folders: list[Path], build_dir: Path) -> None:
+    """One line per case and DoF that ``floatfoam validate`` has studied: its damped period and
+    damping ratio at the fine level with their numerical uncertainty."""
+    from floatfoam.analysis.uncertainty import read_study
+    from floatfoam.analysis.validation import SUMMARY_HEADER, summary_row
+
+    rows = []
+    for folder in folders:
+        study = read_study(folder.name, build_dir)
+        rows += [summary_row(study, dof) for dof in (study or {}).get("dofs", {})]
+    if not rows:
+        return
+    doc.heading("Verification: grid and time-step convergence")
+    doc.table(SUMMARY_HEADER, rows)
+    doc.paragraph("From `floatfoam validate CASE` (each case's section has its tables and "
+                  "figure). GCI_fine of the levels: Celik et al. (2008); GCI time: Roache's "
+                  "two-grid GCI of the halved level's own step; U_num = √(GCI_levels² + "
+                  "GCI_time²), the band around the fine level's value.", note=True)
+
+
 def _periods_cell(theory: TheorySummary) -> str:
     parts = [f"{dof} {theory.period(dof):.4g} s" for dof in dofs.NAMES
              if theory.period(dof) is not None]
@@ -302,6 +322,7 @@ def build_report(*, cases_dir: str | Path | None = None, build_dir: str | Path |
     doc.paragraph(_provenance(), note=True)
     doc.heading("Cases")
     doc.table(("case", "title", "linear theory periods", "status"), summary)
+    _verification_summary(doc, folders, build_dir)
     doc.blocks += body.blocks
     (out_dir / "index.md").write_text(doc.markdown())
     html_path = out_dir / "index.html"

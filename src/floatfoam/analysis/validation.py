@@ -216,6 +216,23 @@ def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]
     return out
 
 
+SUMMARY_HEADER = ("case", "DoF", "runs", "T_d fine (s)", "levels", "GCI_fine levels",
+                  "GCI time", "U_num of T_d", "ζ fine", "U_num of ζ")
+
+
+def summary_row(study: dict, dof: str) -> list[str]:
+    """One line of the report's verification summary: the damped period's and the damping
+    ratio's fine value, how the levels converge, the GCIs and U_num (SUMMARY_HEADER)."""
+    entry = study["dofs"][dof]
+    period, zeta = entry["quantities"]["period"], entry["quantities"]["damping_ratio"]
+    fine = entry["runs"].get("fine", {})
+    return [study["case"], dof, str(len(study["runs"])), _num(fine.get("period")),
+            period["grid"].get("kind", period["grid"].get("note", "")),
+            _pct(period["grid"].get("gci_fine")), _pct(period["time"].get("gci_coarse")),
+            _pct(period["uncertainty"]), _num(fine.get("damping_ratio"), ".3g"),
+            _pct(zeta["uncertainty"])]
+
+
 def study_markdown(study: dict) -> str:
     """The study as Markdown: per DoF, the runs, then one row per quantity."""
     def table(header, rows):
