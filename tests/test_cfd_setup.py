@@ -95,8 +95,8 @@ def test_default_end_time_and_its_refusal():
     roll = theory_summary(case).period("roll")
     assert render.end_time_of(case) == pytest.approx(round(5 * 1.15 * roll, 2))
     assert render.end_time_of(load_case("ellipsoid", ["run.end_time=1.0"])) == 1.0
-    with pytest.raises(InputError, match="capsizes"):
-        render.end_time_of(load_case("ellipsoid_printed_verdict"))
+    with pytest.raises(InputError, match="capsizes"):  # ellipsoid_printed_verdict's body
+        render.end_time_of(load_case("ellipsoid", ["mass.cog=[0,0,0.08]"]))
 
 
 def test_cases_extend_one_another(tmp_path):
