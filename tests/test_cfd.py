@@ -14,12 +14,14 @@ import pytest
 from procutil import locked, processes_in
 
 from floatfoam.analysis.decay import analyse_decay, decay_dict
+from floatfoam.analysis.stillwater import currents, summary
 from floatfoam.case import load_case
 from floatfoam.foam.driver import run_case
 from floatfoam.foam.postproc import max_speed
 from floatfoam.foam.runner import RunError
 from floatfoam.hydrostatics.theory import theory_summary
 from floatfoam.layout import step_done
+from floatfoam.meshing.levels import tank
 from floatfoam.motion import dof_series, read_motion
 
 pytestmark = pytest.mark.openfoam
@@ -69,6 +71,14 @@ def test_still_water_stays_at_rest(tmp_path):
     assert rows[-1, 0] == pytest.approx(1.0, abs=1e-6)
     assert np.all(np.isfinite(rows[:, 1]))
     assert rows[:, 1].max() < 1e-3
+    # the same from the written fields, by where the water is (what `floatfoam run` prints
+    # for a held body): the waterline lies along the O-grid's horizontal lines, so the
+    # gravity term balances there too (held 25.4 mm higher, 0.1 m/s: README)
+    band = tank(case).band
+    written = currents(result.run_dir, band)
+    assert [round(c.time, 6) for c in written] == pytest.approx([0.1 * k for k in range(1, 11)])
+    assert max(max(c.interface, c.water, c.air) for c in written) < 1e-3
+    assert "held still for 1 s" in summary(written, band)
 
 
 def test_divergence_detector_stops_a_broken_run(tmp_path):

@@ -80,6 +80,7 @@ def print_summary(case, result, eq) -> None:
     theory = theory_summary(case, eq)
     if not result.motion_csv.exists():  # a body held still (run.static_body) has no motion
         print(f"no motion series (the body is held still); run: {result.run_dir}")
+        _still_water(case, result.run_dir)
         return
     print(f"motion series: {result.motion_csv}")
     motion = read_motion(result.motion_csv)
@@ -92,6 +93,23 @@ def print_summary(case, result, eq) -> None:
         print(f"{t[i]:>9.3f}" + "".join(f" {motion[c][i]:>14.6g}" for _, c in columns))
     for d, _ in columns:
         _dof_summary(d, motion, theory)
+
+
+def _still_water(case, run_dir: Path) -> None:
+    """The currents the scheme drives around a held body (analysis.stillwater): one line, and
+    every written time in still_water.json of the run directory."""
+    from floatfoam.analysis import stillwater
+    from floatfoam.meshing.levels import tank
+
+    band = tank(case).band
+    try:
+        rows = stillwater.currents(run_dir, band)
+    except Exception as err:  # noqa: BLE001 — the run is done; its summary must not lose it
+        print(f"still-water currents not read ({type(err).__name__}: {err})")
+        return
+    stillwater.write(rows, band, run_dir / stillwater.FILE)
+    print(stillwater.summary(rows, band))
+    print(f"every written time: {run_dir / stillwater.FILE}")
 
 
 def _dof_summary(d, motion, theory) -> None:
