@@ -13,14 +13,16 @@ import pytest
 
 from floatfoam import layout
 from floatfoam.analysis import gci
-from floatfoam.analysis.compare import compare_case
+from floatfoam.analysis.compare import compare_case, reference_entry, reference_record
 from floatfoam.analysis.extrema import crossing_reduction
 from floatfoam.analysis.plots import free_decay_curve
-from floatfoam.analysis.report import Sources, build_report
+from floatfoam.analysis.report import Sources, _overlay, build_report
 from floatfoam.analysis.validation import study, validate_case, write_study
 from floatfoam.case import load_case
 from floatfoam.errors import InputError
 from floatfoam.foam.driver import prepare, settings_digest, smaller_steps
+from floatfoam.hydrostatics.theory import theory_summary
+from floatfoam.motion import file_unit
 
 # Celik et al. (2008), J. Fluids Eng. 130:078001, Table 1: three columns, N1, N2, N3 cells of
 # a 2D grid (r from the counts, their eq. 1), φ1..φ3, and what they print: p (2 decimals),
@@ -238,3 +240,42 @@ def test_a_study_checks_its_four_runs_before_the_first(tmp_path):
     assert out.returncode == 2 and "other settings" in out.stderr, out.stderr
     assert len(out.stderr.strip().splitlines()) == 1
     assert sorted(tmp_path.rglob("*")) == before
+
+
+@pytest.mark.parametrize("name", ["lab_sphere", "lab_sphere_03D", "lab_sphere_05D"])
+def test_measured_record_reduces_to_the_papers_first_cycles(name):
+    """The measured record beside each laboratory sphere (one of the four drops), reduced as
+    the CFD is, lies within the four drops' spread of the reference first period and damping
+    (the reference is their mean ± half their range, so one drop may sit up to twice that from
+    the mean); its trough, scaled by its own release, gives the reference trough scaled by the
+    mean release (the trough is proportional to the drop within the paper's 0.3 %
+    repeatability; 1 % allowed for the drop-to-drop scatter). A copying slip in the CSV, or a
+    reduction that differs from the one behind the references, fails here."""
+    case = load_case(name)
+    record = reference_record(case, "heave")
+    after = record.time >= 0.0
+    reduced = crossing_reduction(record.time[after], record.offset[after])
+    period = reference_entry(case.reference, "heave_first_period")
+    zeta = reference_entry(case.reference, "heave_first_damping_ratio")
+    trough = reference_entry(case.reference, "heave_first_trough")
+    assert reduced.first_period == pytest.approx(period[0], abs=2 * period[1])
+    assert reduced.damping_ratio == pytest.approx(zeta[0], abs=max(2 * zeta[1], 0.003))
+    release = record.offset[after][0]
+    assert reduced.first_trough / release == pytest.approx(
+        trough[0] / case.release["heave"], rel=0.01)
+    # drawn on the decay plots of the case's runs, labelled with its own release
+    overlay = _overlay(case, theory_summary(case), "heave")
+    assert np.array_equal(overlay.measured_time, record.time)
+    scale, unit = file_unit("heave")
+    assert f"released {scale * release:.4g} {unit}" in overlay.measured_label
+
+
+def test_a_measured_record_that_is_not_one_is_refused(tmp_path):
+    folder = tmp_path / "lab"
+    shutil.copytree(layout.CASES_DIR / "lab_sphere", folder)
+    (folder / "kramer2021_01D_rep3.csv").write_text("time_s,heave_m\n0,1\n0,2\n0.1,3\n")
+    with pytest.raises(InputError, match=r"reference\.heave_record.*time \(s\) increasing"):
+        reference_record(load_case(str(folder)), "heave")
+    (folder / "kramer2021_01D_rep3.csv").unlink()
+    with pytest.raises(InputError, match=r"reference\.heave_record.*could not be read"):
+        reference_record(load_case(str(folder)), "heave")

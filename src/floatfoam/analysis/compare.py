@@ -32,6 +32,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from floatfoam import dofs, layout
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.analysis.extrema import crossing_reduction
@@ -83,6 +85,42 @@ def cfd_runs(case_name: str, build_dir: str | Path) -> list[tuple[str, Path]]:
     runs = ((level, layout.run_dir(case_name, level, Path(build_dir))) for level in layout.LEVELS)
     return [(level, run / "motion.csv") for level, run in runs
             if (run / "motion.csv").is_file() and layout.is_finished(run)]
+
+
+@dataclass(frozen=True)
+class MeasuredRecord:
+    """A measured decay record beside the case (``[reference] <dof>_record``): time from the
+    release (s) and the DoF's offset from its equilibrium (m or deg), as the file gives them."""
+
+    time: np.ndarray
+    offset: np.ndarray
+    source: str
+    path: Path
+
+
+def reference_record(case, dof: str) -> MeasuredRecord | None:
+    """The measured record of ``dof`` named by ``[reference] <dof>_record = { file, source }``
+    (a CSV beside case.toml: a header line, then time from the release and offset from the
+    equilibrium; samples before the release, at negative times, are kept); None without one.
+    Raises InputError naming the key when the file is missing or not such a series."""
+    key = f"{dof}_record"
+    entry = (case.reference or {}).get(key)
+    if entry is None:
+        return None
+    if not isinstance(entry, dict) or not isinstance(entry.get("file"), str):
+        raise InputError(f"reference.{key} = {entry!r}: valid is a table with file (a CSV "
+                         "beside case.toml) and source")
+    path = Path(case.path) / entry["file"]
+    try:
+        data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    except (OSError, ValueError) as err:
+        raise InputError(f"reference.{key}: {path} could not be read ({err}); valid is a CSV "
+                         "with a header line and two columns: time (s), offset") from None
+    if data.shape[1] != 2 or data.shape[0] < 3 or not np.all(np.diff(data[:, 0]) > 0) \
+            or not np.all(np.isfinite(data)):
+        raise InputError(f"reference.{key}: {path} is not a record; valid is a CSV with two "
+                         "finite columns, time (s) increasing, and the offset")
+    return MeasuredRecord(data[:, 0], data[:, 1], str(entry.get("source", "")), path)
 
 
 def reference_entry(reference: dict, key: str) -> tuple[float, float | None, str] | None:

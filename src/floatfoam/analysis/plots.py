@@ -32,6 +32,8 @@ class Overlay:
     equilibrium : the theory's equilibrium level (else the fitted mean is used)
     release : release offset from equilibrium (else the first sample's offset)
     reference_period, reference_damping, reference_source : a measured reference
+    measured_time, measured_offset, measured_label : a measured record (time from the release,
+        offset from the equilibrium, file units), drawn as it was measured
     """
 
     theory_period: float | None = None
@@ -40,6 +42,9 @@ class Overlay:
     reference_period: float | None = None
     reference_damping: float | None = None
     reference_source: str = ""
+    measured_time: np.ndarray | None = None
+    measured_offset: np.ndarray | None = None
+    measured_label: str = ""
 
 
 def free_decay_curve(time, t0: float, offset: float, period: float, zeta: float = 0.0):
@@ -74,6 +79,10 @@ def _time_panel(ax, time, value, result: DecayResult, overlay: Overlay, scale, u
                                             zeta),
                 color="C2", lw=1, ls="-.",
                 label=f"{label}: T = {overlay.reference_period:.4g} s, ζ = {zeta:.3g}")
+    if overlay.measured_time is not None:
+        shown = (overlay.measured_time >= time[0]) & (overlay.measured_time <= time[-1])
+        ax.plot(overlay.measured_time[shown], eq + overlay.measured_offset[shown] * scale,
+                color="k", lw=0.9, alpha=0.8, label=overlay.measured_label or "measured")
     ax.axhline(eq, color="0.7", lw=0.8)
     if result.t_usable < result.t_last:
         ax.axvline(result.t_usable, color="0.7", lw=0.8, ls="--")

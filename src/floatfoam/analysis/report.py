@@ -27,6 +27,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 import floatfoam
 from floatfoam import dofs, layout
 from floatfoam.analysis.compare import (
@@ -36,6 +38,7 @@ from floatfoam.analysis.compare import (
     fmt,
     potential_flow,
     reference_entry,
+    reference_record,
     table_rows,
     theory_equilibrium,
     write_comparison,
@@ -115,12 +118,20 @@ def _overlay(case, theory: TheorySummary, dof: str) -> Overlay:
     period = reference_entry(reference, f"{dof}_period")
     zeta = reference_entry(reference, f"{dof}_damping_ratio")
     sources = sorted({e[2] for e in (period, zeta) if e and e[2]})
+    measured = reference_record(case, dof)
+    if measured is not None:
+        first = measured.offset[min(np.searchsorted(measured.time, 0.0),
+                                    measured.time.size - 1)]
+        label = f"measured ({measured.source}; released {first * scale:.4g} {file_unit(dof)[1]})"
     return Overlay(theory_period=theory.period(dof),
                    equilibrium=None if eq is None else eq * scale,
                    release=None if release is None else float(release),
                    reference_period=period[0] if period else None,
                    reference_damping=zeta[0] if zeta else None,
-                   reference_source=f"({'; '.join(sources)})" if sources else "")
+                   reference_source=f"({'; '.join(sources)})" if sources else "",
+                   measured_time=None if measured is None else measured.time,
+                   measured_offset=None if measured is None else measured.offset,
+                   measured_label="" if measured is None else label)
 
 
 def _plots(case, theory, comparison: Comparison, out_dir: Path) -> list[tuple[str, str]]:
