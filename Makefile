@@ -5,6 +5,7 @@ SHELL := /bin/bash
 
 CASE ?= cylinder_heave
 LEVEL ?= coarse
+TIME_LEVEL ?= medium
 NP ?= 2
 SET ?=
 PY := .venv/bin/python
@@ -73,7 +74,7 @@ report: setup  ## gather every case (theory, potential flow, finished CFD runs) 
 	$(FF) report
 
 validate: setup  ## grid + time-step convergence (GCI) of CASE: coarse, medium, fine, medium with dt/2 (TIME_LEVEL=fine: fine with dt/2)
-	$(FF) validate $(CASE) --np $(NP) $(if $(TIME_LEVEL),--time-level $(TIME_LEVEL)) $(SETARGS)
+	$(FF) validate $(CASE) --np $(NP) --time-level $(TIME_LEVEL) $(SETARGS)
 
 bench-cfd: setup  ## every CFD case, 1 s simulated (FULL=1: whole records): cells, steps, wall, 1 vs 2 ranks
 	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2 --cases $(or $(CASES),$(CFD_CASES)) \

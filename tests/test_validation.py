@@ -17,7 +17,7 @@ from floatfoam.analysis.compare import compare_case, reference_entry, reference_
 from floatfoam.analysis.extrema import crossing_reduction
 from floatfoam.analysis.plots import free_decay_curve
 from floatfoam.analysis.report import Sources, _overlay, build_report
-from floatfoam.analysis.validation import study, validate_case, write_study
+from floatfoam.analysis.validation import plan, validate_case, write_study
 from floatfoam.case import load_case
 from floatfoam.errors import InputError
 from floatfoam.foam.driver import prepare, settings_digest, smaller_steps
@@ -100,14 +100,19 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level):
     halved time step 0.3 % shorter than its level: the study says monotonic convergence of
     order 2 towards 0.6 s, and the time GCI is Roache's 3·2·0.3 %, whichever level is halved."""
     cells = {"coarse": 11280, "medium": 22857, "fine": 45120}
-    assert study(time_level)[-1] == (time_level, 2)
-    for level, divisor in study(time_level):
+    assert plan(time_level)[-1] == (time_level, 2)
+    for level, divisor in plan(time_level):
         h = math.sqrt(cells["fine"] / cells[level])
         period = (0.6 + 0.02 * h**2) * (0.997 if divisor > 1 else 1.0)
         _synthetic_run(tmp_path, layout.run_name(level, divisor), cells[level], period, 0.1,
                        0.002)
     result = validate_case(load_case("cylinder_heave"), tmp_path, time_level)
     assert result["runs"][-1] == f"{time_level}-dt2"
+    # analysed for the other level's halving, the study says which one was run
+    other = validate_case(load_case("cylinder_heave"), tmp_path,
+                          "fine" if time_level == "medium" else "medium")
+    assert f"--time-level {time_level}" in \
+        other["dofs"]["heave"]["quantities"]["period"]["time"]["note"]
     period = result["dofs"]["heave"]["quantities"]["period"]
     assert period["grid"]["kind"] == gci.MONOTONIC
     # the decay fit of a 2 ms-sampled record is off by up to ~5e-5 s here, and the level
@@ -259,7 +264,7 @@ def test_measured_record_reduces_to_the_papers_first_cycles(name):
     zeta = reference_entry(case.reference, "heave_first_damping_ratio")
     trough = reference_entry(case.reference, "heave_first_trough")
     assert reduced.first_period == pytest.approx(period[0], abs=2 * period[1])
-    assert reduced.damping_ratio == pytest.approx(zeta[0], abs=max(2 * zeta[1], 0.003))
+    assert reduced.damping_ratio == pytest.approx(zeta[0], abs=2 * zeta[1])
     release = record.offset[after][0]
     assert reduced.first_trough / release == pytest.approx(
         trough[0] / case.release["heave"], rel=0.01)
@@ -276,6 +281,9 @@ def test_a_measured_record_that_is_not_one_is_refused(tmp_path):
     (folder / "kramer2021_01D_rep3.csv").write_text("time_s,heave_m\n0,1\n0,2\n0.1,3\n")
     with pytest.raises(InputError, match=r"reference\.heave_record.*time \(s\) increasing"):
         reference_record(load_case(str(folder)), "heave")
-    (folder / "kramer2021_01D_rep3.csv").unlink()
-    with pytest.raises(InputError, match=r"reference\.heave_record.*could not be read"):
+    (folder / "kramer2021_01D_rep3.csv").write_text("time_s,heave_m\n-1,0\n-0.5,0\n0,1\n")
+    with pytest.raises(InputError, match=r"at least 3 samples from the release"):
         reference_record(load_case(str(folder)), "heave")
+    (folder / "kramer2021_01D_rep3.csv").unlink()  # missing: refused when the case loads
+    with pytest.raises(InputError, match=r"reference\.heave_record = .*valid is a table"):
+        load_case(str(folder))

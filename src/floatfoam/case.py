@@ -333,6 +333,12 @@ def _build(folder: Path, cfg: dict) -> Case:
         if not isinstance(value, str):
             raise InputError(f"case.{key} = {value!r}: valid is a string")
     reference = cfg.get("reference", {})
+    for key, entry in reference.items():  # a measured record: its file, read when drawn
+        if key.endswith("_record") and not (
+                isinstance(entry, dict) and isinstance(entry.get("file"), str)
+                and (folder / entry["file"]).is_file()):
+            raise InputError(f"reference.{key} = {entry!r}: valid is a table with file (a CSV "
+                             f"beside case.toml, in {folder}) and source")
     stages = settings.parse_settings(cfg)
     tank_depth = stages.domain.depth
     if math.isfinite(depth) and tank_depth is not None and abs(tank_depth - depth) > 1e-9 * depth:

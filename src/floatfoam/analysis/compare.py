@@ -116,10 +116,11 @@ def reference_record(case, dof: str) -> MeasuredRecord | None:
     except (OSError, ValueError) as err:
         raise InputError(f"reference.{key}: {path} could not be read ({err}); valid is a CSV "
                          "with a header line and two columns: time (s), offset") from None
-    if data.shape[1] != 2 or data.shape[0] < 3 or not np.all(np.diff(data[:, 0]) > 0) \
-            or not np.all(np.isfinite(data)):
+    if data.shape[1] != 2 or np.count_nonzero(data[:, 0] >= 0.0) < 3 \
+            or not np.all(np.diff(data[:, 0]) > 0) or not np.all(np.isfinite(data)):
         raise InputError(f"reference.{key}: {path} is not a record; valid is a CSV with two "
-                         "finite columns, time (s) increasing, and the offset")
+                         "finite columns, time (s) increasing with at least 3 samples from "
+                         "the release (t ≥ 0), and the offset")
     return MeasuredRecord(data[:, 0], data[:, 1], str(entry.get("source", "")), path)
 
 

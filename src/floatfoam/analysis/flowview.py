@@ -96,7 +96,7 @@ def open_run(run_dir) -> Run:
         raise InputError(f"{info_path}: mesh = {mesh!r}; valid are "
                          f"{', '.join(SLABS + WEDGES + SOLIDS)}")
     reader = offscreen_pyvista().POpenFOAMReader(str(run / "system" / "controlDict"))
-    if _decomposed(run):
+    if decomposed(run):
         reader.case_type = "decomposed"
     reader.disable_all_patch_arrays()
     reader.enable_patch_array("internalMesh")
@@ -113,7 +113,7 @@ def open_run(run_dir) -> Run:
     return Run(run, reader, times, mesh, dof)
 
 
-def _decomposed(run: Path) -> bool:
+def decomposed(run: Path) -> bool:
     """Whether the fields are in processor* folders only (no reconstructed time beyond 0)."""
     return any(run.glob("processor*")) and not time_folders(run)
 

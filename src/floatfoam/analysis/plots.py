@@ -81,7 +81,7 @@ def _time_panel(ax, time, value, result: DecayResult, overlay: Overlay, scale, u
                 label=f"{label}: T = {overlay.reference_period:.4g} s, ζ = {zeta:.3g}")
     if overlay.measured_time is not None:
         shown = (overlay.measured_time >= time[0]) & (overlay.measured_time <= time[-1])
-        ax.plot(overlay.measured_time[shown], eq + overlay.measured_offset[shown] * scale,
+        ax.plot(overlay.measured_time[shown], eq + overlay.measured_offset[shown],
                 color="k", lw=0.9, alpha=0.8, label=overlay.measured_label or "measured")
     ax.axhline(eq, color="0.7", lw=0.8)
     if result.t_usable < result.t_last:
@@ -168,8 +168,8 @@ def plot_decay(path: str | Path, time, value, result: DecayResult, *,
 
 def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
     """Each quantity of a grid study (``floatfoam.analysis.validation``) against the cell size
-    h/h_fine, one row per DoF: the three levels with the fine one's ± U_num, the halved time
-    step at the fine level, and at h = 0 the Richardson-extrapolated value."""
+    h/h_fine, one row per DoF: the three levels with the fine one's ± U_num, the level run with
+    its time step halved (at that level's h), and at h = 0 the Richardson-extrapolated value."""
     entries = list(study["dofs"].items()) or [("—", {"runs": {}, "quantities": {}})]
     fig = Figure(figsize=(4 * len(quantities), 3.2 * len(entries)), layout="constrained")
     axes = fig.subplots(len(entries), len(quantities), squeeze=False)
@@ -187,14 +187,15 @@ def _convergence_panel(ax, dof, entry, key, label, unit) -> None:
     runs = entry["runs"]
     fine_cells = (runs.get("fine") or {}).get("cells")
     points = [((fine_cells / run["cells"]) ** (1 / run["dimension"]), run[key],
-               run.get("divisor", 1)) for run in runs.values()
+               run.get("divisor", 1), name) for name, run in runs.items()
               if run.get(key) is not None and run.get("cells") and fine_cells]
-    levels = sorted((h, v) for h, v, k in points if k == 1)
+    levels = sorted((h, v) for h, v, k, _ in points if k == 1)
     if levels:
         ax.plot(*zip(*levels, strict=True), "o-", color="C0", label="levels")
-    for h, v, k in points:
+    for h, v, k, name in points:
         if k != 1:
-            ax.plot(h, v, "s", color="C3", mfc="none", label=f"fine, time step / {k}")
+            level = name.split("-dt")[0]
+            ax.plot(h, v, "s", color="C3", mfc="none", label=f"{level}, time step / {k}")
     q = entry["quantities"].get(key, {})
     grid = q.get("grid", {})
     if q.get("uncertainty") is not None and "values" in grid:

@@ -120,9 +120,8 @@ def _overlay(case, theory: TheorySummary, dof: str) -> Overlay:
     sources = sorted({e[2] for e in (period, zeta) if e and e[2]})
     measured = reference_record(case, dof)
     if measured is not None:
-        first = measured.offset[min(np.searchsorted(measured.time, 0.0),
-                                    measured.time.size - 1)]
-        label = f"measured ({measured.source}; released {first * scale:.4g} {file_unit(dof)[1]})"
+        first = measured.offset[np.searchsorted(measured.time, 0.0)]  # file units already
+        label = f"measured ({measured.source}; released {first:.4g} {file_unit(dof)[1]})"
     return Overlay(theory_period=theory.period(dof),
                    equilibrium=None if eq is None else eq * scale,
                    release=None if release is None else float(release),

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam.analysis.flowview import WATER, _decomposed, offscreen_pyvista
+from floatfoam.analysis.flowview import WATER, decomposed, offscreen_pyvista
 from floatfoam.errors import InputError
 from floatfoam.jsonfile import dump_json
 
@@ -47,7 +47,7 @@ def currents(run_dir: Path, band: float) -> list[Currents]:
         raise InputError(f"run directory {run}: no OpenFOAM case; valid is a run directory "
                          "written by floatfoam run")
     reader = offscreen_pyvista().POpenFOAMReader(str(controls))
-    if _decomposed(run):
+    if decomposed(run):
         reader.case_type = "decomposed"
     reader.disable_all_patch_arrays()
     reader.enable_patch_array("internalMesh")
@@ -71,6 +71,7 @@ def currents(run_dir: Path, band: float) -> list[Currents]:
 
 
 def write(rows: list[Currents], band: float, path: Path) -> None:
+    """``rows`` and ``band`` as JSON (FILE in the run directory)."""
     path.write_text(dump_json({"band": band, "rows": [asdict(r) for r in rows]}) + "\n")
 
 

@@ -1,7 +1,7 @@
 """Verification of a case's CFD: grid and time-step convergence of its period and damping.
 
 ``floatfoam validate CASE`` runs the case at the three mesh levels and once more at the medium
-level with its time steps halved (:data:`STUDY`); this module analyses those four runs. For
+level with its time steps halved (:func:`plan`); this module analyses those four runs. For
 each DoF the release excites and each quantity (:data:`QUANTITIES`: the damped period of the
 whole record, the first period — twice the first trough's time between zero crossings,
 :func:`floatfoam.analysis.extrema.crossing_reduction` — and the damping ratio) it gives
@@ -14,12 +14,13 @@ whole record, the first period — twice the first trough's time between zero cr
   GCI, in which spatial and temporal errors of opposite signs can cancel;
 * the time-step study: the medium level against the same with its time steps halved, Roache's
   two-grid GCI of the medium level's own step with the first order of the Euler time scheme
-  (cases/_common/system/fvSchemes). It is taken for the fine level's time error, an upper
-  bound: the fine level's steps are never longer than the medium's (same Courant limit on
-  smaller cells, largest step divided by the level factor), and a first-order error shrinks
-  with the step. Halving at the medium level costs about a quarter of halving at the fine
-  one — the fine level with dt/2 was 60 % of a whole study (cylinder_heave: 1705 of 2736 s
-  wall on 2 ranks) — which keeps ``make validate`` of a 2D case within the hour;
+  (cases/_common/system/fvSchemes). It is taken for the fine level's time error, expected
+  to be conservative: the fine level's steps are never longer than the medium's (same Courant
+  limit on smaller cells, largest step divided by the level factor), and a first-order error
+  shrinks with the step — if its constant is about the same on both meshes. Halving the
+  medium level costs about a quarter of halving the fine one, which was 62 % of a whole study
+  (cylinder_heave: 1705 of 2736 s wall on 2 ranks); ``--time-level fine`` halves the fine
+  level itself;
 * the numerical uncertainty of the fine level's solution, U_num = √(GCI_levels² + GCI_time²)
   (taken as independent, the root-sum-square of ITTC 7.5-03-01-01 (2017), the procedure for
   uncertainty analysis in CFD verification and validation; conservative, since the levels
@@ -46,20 +47,17 @@ from floatfoam.jsonfile import dump_json
 
 TIME_STEP_DIVISOR = 2
 #: the level whose time steps are halved by default (module docstring: why); "fine" gives the
-#: fine level's own time error, for four times the cost
+#: fine level's own time error, for about four times that run's cost
 TIME_STEP_LEVEL = "medium"
 TIME_STEP_LEVELS = ("medium", "fine")
 
 
-def study(time_level: str = TIME_STEP_LEVEL) -> tuple[tuple[str, int], ...]:
+def plan(time_level: str = TIME_STEP_LEVEL) -> tuple[tuple[str, int], ...]:
     """(mesh level, time-step divisor) of the four runs, in the order they are run."""
     if time_level not in TIME_STEP_LEVELS:
         raise InputError(f"--time-level {time_level!r} is not a level whose time steps a "
                          "study halves; valid: " + ", ".join(TIME_STEP_LEVELS))
     return ("coarse", 1), ("medium", 1), ("fine", 1), (time_level, TIME_STEP_DIVISOR)
-
-
-STUDY = study()
 TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
 #: key, label, unit of each quantity of the study
 QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
@@ -83,7 +81,7 @@ def study_runs(case_name: str, build: Path,
                time_level: str = TIME_STEP_LEVEL) -> list[tuple[str, int, Path]]:
     """(name, time-step divisor, run directory) of the study's runs that are finished."""
     out = []
-    for level, divisor in study(time_level):
+    for level, divisor in plan(time_level):
         run = layout.run_dir(case_name, level, build, time_step_divisor=divisor)
         if layout.is_finished(run) and (run / "motion.csv").is_file():
             out.append((layout.run_name(level, divisor), divisor, run))
@@ -128,13 +126,13 @@ def grid_study(runs: dict[str, RunValues], key: str) -> gci.GridConvergence | st
     return gci.three_grids(*values, h[1] / h[0], h[2] / h[1])
 
 
-def time_study(runs: dict[str, RunValues], key: str,
-               time_level: str = TIME_STEP_LEVEL) -> gci.TwoLevel | str:
+def time_study(runs: dict[str, RunValues], key: str, time_level: str = TIME_STEP_LEVEL,
+               hint: str = "") -> gci.TwoLevel | str:
     """``time_level`` against its halved time steps (two_level's "fine" is the halved run)."""
     level = runs.get(time_level)
     halved = runs.get(layout.run_name(time_level, TIME_STEP_DIVISOR))
     if level is None or halved is None:
-        return f"needs the {time_level} level and its halved time step finished"
+        return f"needs the {time_level} level and its halved time step finished{hint}"
     a, b = halved.values.get(key), level.values.get(key)
     if a is None or b is None or not (math.isfinite(a) and math.isfinite(b)):
         return "a record could not be analysed"
@@ -143,8 +141,8 @@ def time_study(runs: dict[str, RunValues], key: str,
 
 def numerical_uncertainty(grid, time) -> float | None:
     """U_num = √(GCI_grid² + GCI_time²) of the fine level's solution, a fraction; None when
-    unknown. GCI_time is the time-step level's own step (the coarser of the time pair,
-    Roache's GCI_coarse), an upper bound of the fine level's (module docstring)."""
+    unknown. GCI_time is the halved level's own step (the coarser of the time pair, Roache's
+    GCI_coarse), taken for the fine level's (module docstring)."""
     g = grid.gci_fine if isinstance(grid, gci.GridConvergence) else None
     t = time.gci_coarse if isinstance(time, gci.TwoLevel) else None
     return None if g is None or t is None else math.hypot(g, t)
@@ -154,6 +152,10 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
     """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict."""
     build = Path(build or layout.build_dir())
     found = study_runs(case.name, build, time_level)
+    other = [level for level in TIME_STEP_LEVELS if level != time_level and layout.is_finished(
+        layout.run_dir(case.name, level, build, time_step_divisor=TIME_STEP_DIVISOR))]
+    hint = (f" ({layout.run_name(other[0], TIME_STEP_DIVISOR)} is: --time-level {other[0]})"
+            if other else "")
     out = {"case": case.name, "runs": [name for name, _, _ in found], "dofs": {},
            "time_order": TIME_ORDER, "time_step_divisor": TIME_STEP_DIVISOR,
            "time_step_level": time_level}
@@ -164,7 +166,7 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
                           for name, r in runs.items()},
                  "quantities": {}}
         for key, _, _ in QUANTITIES:
-            grid, time = grid_study(runs, key), time_study(runs, key, time_level)
+            grid, time = grid_study(runs, key), time_study(runs, key, time_level, hint)
             entry["quantities"][key] = {
                 "grid": grid.as_dict() if not isinstance(grid, str) else {"note": grid},
                 "time": time.as_dict() if not isinstance(time, str) else {"note": time},
@@ -187,7 +189,8 @@ GCI_HEADER = ("quantity", "convergence", "order p", "extrapolated", "e_a21",
 def method(time_level: str = TIME_STEP_LEVEL) -> str:
     """How the study's numbers are made, for the foot of its table."""
     bound = ("" if time_level == "fine" else
-             ", an upper bound of the fine level's, whose steps are no longer")
+             ", taken for the fine level's, whose steps are no longer (conservative if the "
+             "time error's constant is about the same on both meshes)")
     return ("Levels: Celik et al. (2008), J. Fluids Eng. 130:078001 (cell size from the cell "
             "count, safety factor 1.25); the levels refine space and time together (the "
             "Courant limit is the same, the largest step shrinks with the cell), so this is a "
@@ -217,7 +220,7 @@ def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]
 
 
 SUMMARY_HEADER = ("case", "DoF", "runs", "T_d fine (s)", "levels", "GCI_fine levels",
-                  "GCI time", "U_num of T_d", "ζ fine", "U_num of ζ")
+                  "dt/2 at", "GCI time", "U_num of T_d", "ζ fine", "U_num of ζ")
 
 
 def summary_row(study: dict, dof: str) -> list[str]:
@@ -228,7 +231,8 @@ def summary_row(study: dict, dof: str) -> list[str]:
     fine = entry["runs"].get("fine", {})
     return [study["case"], dof, str(len(study["runs"])), _num(fine.get("period")),
             period["grid"].get("kind", period["grid"].get("note", "")),
-            _pct(period["grid"].get("gci_fine")), _pct(period["time"].get("gci_coarse")),
+            _pct(period["grid"].get("gci_fine")), study.get("time_step_level", "fine"),
+            _pct(period["time"].get("gci_coarse")),
             _pct(period["uncertainty"]), _num(fine.get("damping_ratio"), ".3g"),
             _pct(zeta["uncertainty"])]
 

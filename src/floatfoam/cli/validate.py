@@ -23,8 +23,8 @@ def register(sub) -> None:
     p.add_argument("--np", type=int, default=2, help="MPI ranks of every run (default 2)")
     p.add_argument("--time-level", default="medium", metavar="LEVEL",
                    help="the level run once more with its time steps halved: medium "
-                   "(default: an upper bound of the fine level's time error) or fine (its own, "
-                   "for about four times the cost)")
+                   "(default: taken for the fine level's time error) or fine (its own, for "
+                   "about four times that run's cost)")
     p.add_argument("--no-run", action="store_true",
                    help="analyse the finished runs only; run nothing")
     p.set_defaults(func=run)
@@ -34,7 +34,7 @@ def run(args) -> int:
     """Exit codes as ``floatfoam run``'s: 0 done, 1 a run failed, 2 bad input, 75 another run
     holds a run directory, 128 + signal when interrupted (the same command resumes)."""
     from floatfoam import layout
-    from floatfoam.analysis.validation import study, study_markdown, validate_case, write_study
+    from floatfoam.analysis.validation import plan, study_markdown, validate_case, write_study
     from floatfoam.case import load_case
     from floatfoam.cli.run import EXIT_LOCKED
     from floatfoam.foam.driver import check_ranks, check_run, run_case
@@ -44,7 +44,7 @@ def run(args) -> int:
 
     case = load_case(args.case, args.overrides)
     check_ranks(args.np, None)
-    runs = study(args.time_level)
+    runs = plan(args.time_level)
     build = layout.build_dir()
     if not args.no_run:
         eq = equilibrium(case)
