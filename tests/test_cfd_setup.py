@@ -144,3 +144,17 @@ def test_summary_of_a_record_too_short_for_the_fit(tmp_path, capsys):
     assert "CFD heave decay analysis: record: " in out and "need at least 1.5" in out
     found = float(out.split("period from them ")[1].split()[0])
     assert found == pytest.approx(period, rel=0.01)  # extrema at 0.4 and 0.8 s
+
+
+def test_a_capsizing_release_is_summarised_by_its_turn(capsys):
+    """No period to fit when the theory says it capsizes: the run's summary gives how far the
+    body turned and when it passed each 10° (here a heel growing as 5° cosh(4t))."""
+    from floatfoam import dofs
+    from floatfoam.cli.run import _capsize_path
+
+    t = np.linspace(0.0, 0.6, 601)
+    heel = np.radians(5.0 * np.cosh(4.0 * t))
+    _capsize_path(dofs.dof("roll"), t, heel)
+    out = capsys.readouterr().out
+    assert "from 5 deg to 27.78 deg at 0.600 s" in out
+    assert f"10 deg at {np.arccosh(2.0) / 4:.3f} s" in out and "20 deg at" in out

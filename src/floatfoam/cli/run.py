@@ -127,6 +127,9 @@ def _dof_summary(d, motion, theory) -> None:
         print(f"theory {d.name} period ({what}): {period:.4f} s"
               + (f"; memoir: {memoir:.4f} s" if memoir else ""))
     t, x = dof_series(motion, d.name)
+    if entry is not None and entry.verdict == "capsizes":
+        _capsize_path(d, t, x)
+        return
     try:
         decay = analyse_decay(t, x, units=(d.file_scale, d.unit), name=d.column).summary()
         print(f"CFD damped {d.name} period: {decay['period_mean']:.4f} s, damping ratio "
@@ -134,6 +137,19 @@ def _dof_summary(d, motion, theory) -> None:
     except InputError as err:
         print(f"CFD {d.name} decay analysis: {err}")
         _early_period(d, t, x)
+
+
+def _capsize_path(d, t, x) -> None:
+    """A release the theory says capsizes has no period: how far, and how fast, it turned."""
+    import numpy as np
+
+    angle = np.abs(np.asarray(x, dtype=float) * d.file_scale)
+    k = int(np.argmax(angle))
+    marks = [(a, float(np.interp(a, np.maximum.accumulate(angle), t)))
+             for a in range(10, int(angle[k]) + 1, 10) if a > angle[0]]
+    print(f"CFD {d.name}: from {angle[0]:.3g} {d.unit} to {angle[k]:.4g} {d.unit} at "
+          f"{t[k]:.3f} s (the record ends at {angle[-1]:.4g} {d.unit}, {t[-1]:.3f} s)"
+          + ("; " + ", ".join(f"{a} {d.unit} at {s:.3f} s" for a, s in marks) if marks else ""))
 
 
 def _early_period(d, t, x) -> None:
