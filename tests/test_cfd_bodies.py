@@ -100,9 +100,12 @@ def analysed(motion, name: str) -> dict:
     return {**result.summary(), "equilibrium": decay_dict(result)["equilibrium"]}
 
 
-# make test's heave records: the first four extrema and the settled level are in by 2.5 s;
-# the cases' own records run on until the swing is below 1 % of the release.
-HEAVE_RECORDS = {"elliptic_cylinder": 2.5, "box_bilge_heave": 2.5, "parabolic_cylinder": 2.5}
+# make test's heave records: the first four extrema and the settled level are in by 2.5 s
+# (2.0 s for the faster sections: their fourth extremum comes by 1.56 s, and the mean of the
+# last second is then within 0.04 mm of the equilibrium on the ellipse's coarse record and
+# within 0.24 % of the draft on Cummins' parabola; the box's fourth comes at ~1.8 s); the
+# cases' own records run on until the swing is below 1 % of the release.
+HEAVE_RECORDS = {"elliptic_cylinder": 2.0, "box_bilge_heave": 2.5, "parabolic_cylinder": 2.0}
 
 
 @pytest.mark.parametrize("name", list(HEAVE_RECORDS))
