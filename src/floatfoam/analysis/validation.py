@@ -58,6 +58,8 @@ def plan(time_level: str = TIME_STEP_LEVEL) -> tuple[tuple[str, int], ...]:
         raise InputError(f"--time-level {time_level!r} is not a level whose time steps a "
                          "study halves; valid: " + ", ".join(TIME_STEP_LEVELS))
     return ("coarse", 1), ("medium", 1), ("fine", 1), (time_level, TIME_STEP_DIVISOR)
+
+
 TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
 #: key, label, unit of each quantity of the study
 QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
