@@ -47,7 +47,9 @@ class Limits:
     max_body_speed: float = 10.0  # m/s
     # A morphing mesh that can no longer follow the body squeezes cells until the Courant limit
     # shrinks the time step ~500× (measured: the capsizing ellipse at 80°, 5 ms → 1e-5 s, after
-    # which it made no progress): 100 steps in a row below this time step stop the run.
+    # which it made no progress). So does a flow blown up where the mesh motion changes fastest
+    # (the 3D ellipsoid at 5° heel, inner/outer distances 0.06/0.32 m: air at 10³ m/s, steps of
+    # 3e-6 s). 100 steps in a row below this time step stop the run.
     min_delta_t: float | None = None
     stall_steps: int = 100
 
@@ -70,8 +72,10 @@ class Stall:
                     roll, pitch, _ = (math.degrees(a) for a in euler_angles(s.orientation))
                     where = f" with the body at roll {roll:.1f}°, pitch {pitch:.1f}°"
                 return (f"the time step collapsed to {s.delta_t:.2g} s at t = {s.time:g} s"
-                        f"{where}: the moving mesh is too deformed to follow the body (larger "
-                        "run.inner_distance and run.outer_distance spread the deformation)")
+                        f"{where}: the moving mesh squeezed its cells (a turn too large for "
+                        "morphing) or the flow blew up where the mesh motion changes fastest "
+                        "(even at a few degrees); larger run.inner_distance and "
+                        "run.outer_distance spread the deformation")
         return None
 
 
