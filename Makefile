@@ -74,8 +74,8 @@ mesh-table: setup  ## mesh levels table (Markdown) of every case, with checkMesh
 report: setup  ## gather every case (theory, potential flow, finished CFD runs) into build/report/
 	$(FF) report
 
-validate: setup  ## grid + time-step convergence (GCI) of CASE: coarse, medium, fine, medium with dt/2 (TIME_LEVEL=fine: fine with dt/2)
-	$(FF) validate $(CASE) --np $(NP) --time-level $(TIME_LEVEL) $(SETARGS)
+validate: setup  ## grid + time-step convergence (GCI) of CASE: coarse, medium, fine, medium with dt/2 (TIME_LEVEL=fine: fine with dt/2; MORPHING=1.5: coarse with the morphing distances × 1.5)
+	$(FF) validate $(CASE) --np $(NP) --time-level $(TIME_LEVEL) $(if $(MORPHING),--morphing $(MORPHING)) $(SETARGS)
 
 bench-cfd: setup  ## every CFD case, 1 s simulated (FULL=1: whole records): cells, steps, wall, 1 vs 2 ranks
 	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2 --cases $(or $(CASES),$(CFD_CASES)) \

@@ -94,20 +94,33 @@ def _synthetic_run(build, name, cells, period, zeta, dt):
     layout.mark_done(run, layout.FINISHED)
 
 
-@pytest.mark.parametrize("time_level", ["medium", "fine"])
-def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level):
+@pytest.mark.parametrize("time_level, morphing", [("medium", 1.5), ("fine", None)])
+def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morphing):
     """Periods following T = 0.6 + 0.02 (h/h_f)² on the three levels and ζ constant, and the
     halved time step 0.3 % shorter than its level: the study says monotonic convergence of
-    order 2 towards 0.6 s, and the time GCI is Roache's 3·2·0.3 %, whichever level is halved."""
+    order 2 towards 0.6 s, and the time GCI is Roache's 3·2·0.3 %, whichever level is halved.
+    The coarse level with wider morphing distances damps a fifth more (ζ 0.12): the morphing
+    study says +20 %, and it stays out of the levels' study and U_num."""
     cells = {"coarse": 11280, "medium": 22857, "fine": 45120}
-    assert plan(time_level)[-1] == (time_level, 2)
-    for level, divisor in plan(time_level):
+    runs = plan(time_level, morphing)
+    assert runs[3] == (time_level, 2, 1.0)
+    assert runs[4:] == ((("coarse", 1, 1.5),) if morphing else ())
+    for level, divisor, factor in runs:
         h = math.sqrt(cells["fine"] / cells[level])
         period = (0.6 + 0.02 * h**2) * (0.997 if divisor > 1 else 1.0)
-        _synthetic_run(tmp_path, layout.run_name(level, divisor), cells[level], period, 0.1,
-                       0.002)
-    result = validate_case(load_case("cylinder_heave"), tmp_path, time_level)
-    assert result["runs"][-1] == f"{time_level}-dt2"
+        _synthetic_run(tmp_path, layout.run_name(level, divisor, factor), cells[level], period,
+                       0.12 if factor != 1 else 0.1, 0.002)
+    result = validate_case(load_case("cylinder_heave"), tmp_path, time_level, morphing)
+    assert result["runs"][3] == f"{time_level}-dt2"
+    zeta = result["dofs"]["heave"]["quantities"]["damping_ratio"]
+    if morphing:
+        assert result["runs"][4] == "coarse-morph1.5"
+        # the fit of a 2 ms-sampled record recovers ζ to ~1e-4 of 0.1: the change within 1 %
+        assert zeta["morphing"]["relative_change"] == pytest.approx(0.2, rel=0.01)
+        assert result["dofs"]["heave"]["quantities"]["period"]["morphing"][
+            "relative_change"] == pytest.approx(0.0, abs=1e-3)
+    else:
+        assert "not run" in zeta["morphing"]["note"]
     # analysed for the other level's halving, the study says which one was run
     other = validate_case(load_case("cylinder_heave"), tmp_path,
                           "fine" if time_level == "medium" else "medium")
@@ -127,6 +140,8 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level):
     assert all(p.is_file() and p.stat().st_size > 0 for p in paths)
     assert "monotonic convergence" in paths[1].read_text()
     assert f"the {time_level} level against its time steps halved" in paths[1].read_text()
+    assert ("Morphing distances × 1.5 at the coarse level" in paths[1].read_text()) == \
+        bool(morphing)
     # the report gathers it: the study's tables and figure, and the extrapolated row
     cases = tmp_path / "cases"
     shutil.copytree(layout.CASES_DIR / "cylinder_heave", cases / "cylinder_heave")
@@ -135,7 +150,10 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level):
     md = (tmp_path / "report" / "index.md").read_text()
     assert "### Grid and time-step convergence" in md
     assert "## Verification: grid and time-step convergence" in md
-    assert "| cylinder_heave | heave | 4 | 0.6" in md  # the summary line of the study
+    # the summary line of the study, ending with the damping's change with the distances
+    line = next(x for x in md.splitlines() if x.startswith("| cylinder_heave | heave |"))
+    assert line.startswith(f"| cylinder_heave | heave | {5 if morphing else 4} | 0.6")
+    assert line.endswith("| +20 % (× 1.5) |" if morphing else "| — |")
     assert "| heave | CFD fine ± U_num | 0.6" in md
     assert (tmp_path / "report" / "cylinder_heave" / "convergence.png").is_file()
 
@@ -148,9 +166,29 @@ def test_smaller_steps_is_another_run():
         assert getattr(halved.settings.run, key) == getattr(case.settings.run, key) / 2
     assert settings_digest(halved, "fine") != settings_digest(case, "fine")
     assert layout.run_dir("c", "fine", time_step_divisor=2).name == "fine-dt2"
+    assert layout.run_dir("c", "coarse", morphing=1.5).name == "coarse-morph1.5"
     # the case's words and references do not make a finished run foreign
     more = load_case("cylinder_heave", ['case.title="another"'])
     assert settings_digest(more, "fine") == settings_digest(case, "fine")
+
+
+@pytest.mark.parametrize("name, inner, outer", [
+    ("cylinder_heave", 0.045, 0.24),  # its [run] distances
+    ("elliptic_cylinder", 0.3 * 0.2, 1.6 * 0.2),  # the defaults: 0.3 and 1.6 × its 0.2 m height
+])
+def test_scaled_morphing_is_another_run(name, inner, outer):
+    """--morphing 1.5: both distances (set or defaulted) × 1.5, in a run of its own settings."""
+    from floatfoam.foam.driver import scaled_morphing
+    from floatfoam.foam.render import release_state
+    from floatfoam.hydrostatics.theory import equilibrium
+
+    case = load_case(name)
+    pose = release_state(case, equilibrium(case))["pose"]
+    wider = scaled_morphing(case, "coarse", pose, 1.5)
+    assert wider.settings.run.inner_distance == pytest.approx(1.5 * inner)
+    assert wider.settings.run.outer_distance == pytest.approx(1.5 * outer)
+    assert settings_digest(wider, "coarse") != settings_digest(case, "coarse")
+    assert scaled_morphing(case, "coarse", pose, 1) is case
 
 
 @pytest.mark.parametrize("argv, word", [
@@ -158,6 +196,9 @@ def test_smaller_steps_is_another_run():
     (["validate", "cylinder_heave", "--no-run"], "no finished run"),
     (["validate", "cylinder_heave", "--np", "0"], "--np"),
     (["validate", "cylinder_heave", "--time-level", "coarse"], "--time-level"),
+    (["validate", "cylinder_heave", "--morphing", "1"], "--morphing"),
+    (["validate", "cylinder_heave", "--morphing", "-2"], "--morphing"),
+    (["run", "cylinder_heave", "--morphing", "0"], "--morphing"),
 ])
 def test_bad_input_is_one_line_and_writes_nothing(tmp_path, argv, word):
     env = {"FLOATFOAM_BUILD": str(tmp_path), "PATH": "/usr/bin:/bin"}

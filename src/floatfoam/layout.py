@@ -53,17 +53,21 @@ def case_build_dir(case_name: str, build: Path | None = None) -> Path:
     return Path(build or build_dir()) / case_name
 
 
-def run_name(level: str, time_step_divisor: int = 1) -> str:
+def run_name(level: str, time_step_divisor: int = 1, morphing: float = 1.0) -> str:
     """A run's folder name: its mesh level, followed by ``-dt<k>`` when its time steps are
-    those of the level divided by k (the time-step study of ``floatfoam validate``)."""
-    return level if time_step_divisor == 1 else f"{level}-dt{time_step_divisor}"
+    those of the level divided by k (the time-step study of ``floatfoam validate``) and by
+    ``-morph<f>`` when its six-DoF morphing distances are the case's times f (its morphing
+    study)."""
+    name = level if time_step_divisor == 1 else f"{level}-dt{time_step_divisor}"
+    return name if morphing == 1 else f"{name}-morph{morphing:g}"
 
 
 def run_dir(case_name: str, level: str, build: Path | None = None, *,
-            time_step_divisor: int = 1) -> Path:
+            time_step_divisor: int = 1, morphing: float = 1.0) -> Path:
     """The run directory of a case at a mesh level: ``<build>/<case>/<level>`` (and
-    ``<level>-dt<k>`` with its time steps divided by k)."""
-    return case_build_dir(case_name, build) / run_name(level, time_step_divisor)
+    ``<level>-dt<k>`` with its time steps divided by k, ``<level>-morph<f>`` with its
+    morphing distances times f)."""
+    return case_build_dir(case_name, build) / run_name(level, time_step_divisor, morphing)
 
 
 def list_cases(cases_dir: Path | None = None) -> list[Path]:

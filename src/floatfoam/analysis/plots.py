@@ -187,15 +187,19 @@ def _convergence_panel(ax, dof, entry, key, label, unit) -> None:
     runs = entry["runs"]
     fine_cells = (runs.get("fine") or {}).get("cells")
     points = [((fine_cells / run["cells"]) ** (1 / run["dimension"]), run[key],
-               run.get("divisor", 1), name) for name, run in runs.items()
+               run.get("divisor", 1), run.get("morphing", 1.0), name)
+              for name, run in runs.items()
               if run.get(key) is not None and run.get("cells") and fine_cells]
-    levels = sorted((h, v) for h, v, k, _ in points if k == 1)
+    levels = sorted((h, v) for h, v, k, f, _ in points if k == 1 and f == 1)
     if levels:
         ax.plot(*zip(*levels, strict=True), "o-", color="C0", label="levels")
-    for h, v, k, name in points:
+    for h, v, k, f, name in points:
+        level = name.split("-")[0]
         if k != 1:
-            level = name.split("-dt")[0]
             ax.plot(h, v, "s", color="C3", mfc="none", label=f"{level}, time step / {k}")
+        elif f != 1:
+            ax.plot(h, v, "^", color="C2", mfc="none",
+                    label=f"{level}, morphing distances × {f:g}")
     q = entry["quantities"].get(key, {})
     grid = q.get("grid", {})
     if q.get("uncertainty") is not None and "values" in grid:

@@ -253,7 +253,14 @@ def _pictures_section(doc: Document, case_name: str, levels: list[str], build_di
 def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir: Path) -> None:
     """The grid and time-step study of ``floatfoam validate``, when it has been run."""
     from floatfoam.analysis.uncertainty import read_study
-    from floatfoam.analysis.validation import GCI_HEADER, RUNS_HEADER, method, study_tables
+    from floatfoam.analysis.validation import (
+        GCI_HEADER,
+        MORPHING_HEADER,
+        RUNS_HEADER,
+        method,
+        morphing_rows,
+        study_tables,
+    )
 
     study = read_study(case_name, build_dir)
     if study is None:
@@ -263,7 +270,11 @@ def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir:
         doc.paragraph(f"{dof}:")
         doc.table(RUNS_HEADER, runs)
         doc.table(GCI_HEADER, rows)
-    doc.paragraph(method(study.get("time_step_level", "fine")), note=True)
+        if morphing_rows(study, dof):
+            doc.paragraph(f"{dof}, morphing distances × {study['morphing']:g}:")
+            doc.table(MORPHING_HEADER, morphing_rows(study, dof))
+    doc.paragraph(method(study.get("time_step_level", "fine"), study.get("morphing")),
+                  note=True)
     figure = layout.case_build_dir(case_name, build_dir) / "validation" / "convergence.png"
     if figure.is_file():
         name = f"{case_name}/convergence.png"
@@ -288,7 +299,9 @@ def _verification_summary(doc: Document, folders: list[Path], build_dir: Path) -
     doc.paragraph("From `floatfoam validate CASE` (each case's section has its tables and "
                   "figure). GCI_fine of the levels: Celik et al. (2008); GCI time: Roache's "
                   "two-grid GCI of the halved level's own step; U_num = √(GCI_levels² + "
-                  "GCI_time²), the band around the fine level's value.", note=True)
+                  "GCI_time²), the band around the fine level's value. ζ with distances × F: "
+                  "the coarse level's damping ratio with the six-DoF morphing distances scaled "
+                  "(`floatfoam validate --morphing F`), which neither GCI sees.", note=True)
 
 
 def _periods_cell(theory: TheorySummary) -> str:

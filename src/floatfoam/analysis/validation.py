@@ -24,7 +24,12 @@ whole record, the first period — twice the first trough's time between zero cr
 * the numerical uncertainty of the fine level's solution, U_num = √(GCI_levels² + GCI_time²)
   (taken as independent, the root-sum-square of ITTC 7.5-03-01-01 (2017), the procedure for
   uncertainty analysis in CFD verification and validation; conservative, since the levels
-  already hold part of the time error).
+  already hold part of the time error);
+* with ``--morphing F``, the morphing study: the coarse level once more with its six-DoF
+  morphing distances times F (:func:`floatfoam.foam.driver.scaled_morphing`), and the change
+  of each quantity. The distances are the same on every level, so neither GCI sees them; on
+  the laboratory sphere they moved the damping more than the levels did. Not part of U_num:
+  it is a sensitivity to a modelling choice, not a discretisation error that shrinks.
 
 Written to ``<build>/<case>/validation/``: ``validation.json`` (every number),
 ``validation.md`` (the table) and ``convergence.png`` (each quantity against the cell size,
@@ -52,12 +57,26 @@ TIME_STEP_LEVEL = "medium"
 TIME_STEP_LEVELS = ("medium", "fine")
 
 
-def plan(time_level: str = TIME_STEP_LEVEL) -> tuple[tuple[str, int], ...]:
-    """(mesh level, time-step divisor) of the four runs, in the order they are run."""
+#: the level run once more with its morphing distances scaled: the cheapest, since the
+#: distances' effect is to be compared with the levels', not refined
+MORPHING_LEVEL = "coarse"
+
+
+def plan(time_level: str = TIME_STEP_LEVEL,
+         morphing: float | None = None) -> tuple[tuple[str, int, float], ...]:
+    """(mesh level, time-step divisor, morphing factor) of the study's runs, in the order they
+    are run: the three levels, the halved time steps, and the scaled morphing distances when
+    ``morphing`` is given."""
     if time_level not in TIME_STEP_LEVELS:
         raise InputError(f"--time-level {time_level!r} is not a level whose time steps a "
                          "study halves; valid: " + ", ".join(TIME_STEP_LEVELS))
-    return ("coarse", 1), ("medium", 1), ("fine", 1), (time_level, TIME_STEP_DIVISOR)
+    if morphing is not None and (not math.isfinite(morphing) or morphing <= 0
+                                 or morphing == 1):
+        raise InputError(f"--morphing {morphing:g}: valid is a factor > 0 other than 1 (1.5: "
+                         "both morphing distances one and a half times the case's)")
+    runs = (("coarse", 1, 1.0), ("medium", 1, 1.0), ("fine", 1, 1.0),
+            (time_level, TIME_STEP_DIVISOR, 1.0))
+    return runs if morphing is None else (*runs, (MORPHING_LEVEL, 1, float(morphing)))
 
 
 TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
@@ -75,26 +94,30 @@ class RunValues:
     cells: int | None
     dimension: int
     divisor: int = 1  # of the level's time steps
+    morphing: float = 1.0  # factor of the morphing distances
     values: dict = field(default_factory=dict)  # key of QUANTITIES → value (None: failed)
     note: str = ""
 
 
-def study_runs(case_name: str, build: Path,
-               time_level: str = TIME_STEP_LEVEL) -> list[tuple[str, int, Path]]:
-    """(name, time-step divisor, run directory) of the study's runs that are finished."""
+def study_runs(case_name: str, build: Path, time_level: str = TIME_STEP_LEVEL,
+               morphing: float | None = None) -> list[tuple[str, int, float, Path]]:
+    """(name, time-step divisor, morphing factor, run directory) of the study's runs that are
+    finished."""
     out = []
-    for level, divisor in plan(time_level):
-        run = layout.run_dir(case_name, level, build, time_step_divisor=divisor)
+    for level, divisor, factor in plan(time_level, morphing):
+        run = layout.run_dir(case_name, level, build, time_step_divisor=divisor,
+                             morphing=factor)
         if layout.is_finished(run) and (run / "motion.csv").is_file():
-            out.append((layout.run_name(level, divisor), divisor, run))
+            out.append((layout.run_name(level, divisor, factor), divisor, factor, run))
     return out
 
 
-def _run_values(name: str, divisor: int, run: Path, dof: str) -> RunValues:
+def _run_values(name: str, divisor: int, run: Path, dof: str,
+                morphing: float = 1.0) -> RunValues:
     info_file = run / layout.MARKERS / "info.json"
     info = json.loads(info_file.read_text()) if info_file.is_file() else {}
     dimension = 3 if str(info.get("mesh", "")).startswith("3d") else 2
-    out = RunValues(name, info.get("cells"), dimension, divisor)
+    out = RunValues(name, info.get("cells"), dimension, divisor, morphing)
     try:
         time, value, result = analyse_run(run / "motion.csv", dof)
     except InputError as err:
@@ -141,6 +164,22 @@ def time_study(runs: dict[str, RunValues], key: str, time_level: str = TIME_STEP
     return gci.two_level(a, b, TIME_STEP_DIVISOR, TIME_ORDER)
 
 
+def morphing_study(runs: dict[str, RunValues], key: str, factor: float | None) -> dict:
+    """The coarse level against the same with its morphing distances times ``factor``: both
+    values and the relative change (the scaled run's minus the case's, over the case's)."""
+    if factor is None:
+        return {"note": "not run (floatfoam validate --morphing F)"}
+    base = runs.get(MORPHING_LEVEL)
+    scaled = runs.get(layout.run_name(MORPHING_LEVEL, 1, factor))
+    if base is None or scaled is None:
+        return {"factor": factor, "note": f"needs the {MORPHING_LEVEL} level and its morphing "
+                f"distances × {factor:g} finished"}
+    a, b = base.values.get(key), scaled.values.get(key)
+    if a is None or b is None or not (math.isfinite(a) and math.isfinite(b)) or a == 0:
+        return {"factor": factor, "note": "a record could not be analysed"}
+    return {"factor": factor, "values": [a, b], "relative_change": (b - a) / a}
+
+
 def numerical_uncertainty(grid, time) -> float | None:
     """U_num = √(GCI_grid² + GCI_time²) of the fine level's solution, a fraction; None when
     unknown. GCI_time is the halved level's own step (the coarser of the time pair, Roache's
@@ -150,21 +189,23 @@ def numerical_uncertainty(grid, time) -> float | None:
     return None if g is None or t is None else math.hypot(g, t)
 
 
-def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_LEVEL) -> dict:
+def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_LEVEL,
+                  morphing: float | None = None) -> dict:
     """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict."""
     build = Path(build or layout.build_dir())
-    found = study_runs(case.name, build, time_level)
+    found = study_runs(case.name, build, time_level, morphing)
     other = [level for level in TIME_STEP_LEVELS if level != time_level and layout.is_finished(
         layout.run_dir(case.name, level, build, time_step_divisor=TIME_STEP_DIVISOR))]
     hint = (f" ({layout.run_name(other[0], TIME_STEP_DIVISOR)} is: --time-level {other[0]})"
             if other else "")
-    out = {"case": case.name, "runs": [name for name, _, _ in found], "dofs": {},
+    out = {"case": case.name, "runs": [name for name, _, _, _ in found], "dofs": {},
            "time_order": TIME_ORDER, "time_step_divisor": TIME_STEP_DIVISOR,
-           "time_step_level": time_level}
+           "time_step_level": time_level, "morphing": morphing}
     for dof in excited_dofs(case, {}):
-        runs = {name: _run_values(name, k, run, dof) for name, k, run in found}
+        runs = {name: _run_values(name, k, run, dof, f) for name, k, f, run in found}
         entry = {"runs": {name: {"cells": r.cells, "dimension": r.dimension,
-                                 "divisor": r.divisor, **r.values, "note": r.note}
+                                 "divisor": r.divisor, "morphing": r.morphing, **r.values,
+                                 "note": r.note}
                           for name, r in runs.items()},
                  "quantities": {}}
         for key, _, _ in QUANTITIES:
@@ -172,7 +213,8 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
             entry["quantities"][key] = {
                 "grid": grid.as_dict() if not isinstance(grid, str) else {"note": grid},
                 "time": time.as_dict() if not isinstance(time, str) else {"note": time},
-                "uncertainty": numerical_uncertainty(grid, time)}
+                "uncertainty": numerical_uncertainty(grid, time),
+                "morphing": morphing_study(runs, key, morphing)}
         out["dofs"][dof] = entry
     return out
 
@@ -188,7 +230,7 @@ def _pct(value) -> str:
 RUNS_HEADER = ("run", "cells", *(label for _, label, _ in QUANTITIES), "note")
 GCI_HEADER = ("quantity", "convergence", "order p", "extrapolated", "e_a21",
               "GCI_fine (levels)", "Δ with dt/2", "GCI (time)", "U_num")
-def method(time_level: str = TIME_STEP_LEVEL) -> str:
+def method(time_level: str = TIME_STEP_LEVEL, morphing: float | None = None) -> str:
     """How the study's numbers are made, for the foot of its table."""
     bound = ("" if time_level == "fine" else
              ", taken for the fine level's, whose steps are no longer (conservative if the "
@@ -199,7 +241,11 @@ def method(time_level: str = TIME_STEP_LEVEL) -> str:
             f"space-time GCI. Time alone: the {time_level} level against its time steps "
             f"halved, Roache's two-grid GCI of the {time_level} level's own step (F_s = 3, "
             f"first order){bound}. U_num = √(GCI_levels² + GCI_time²), the band around the "
-            "fine level's value.")
+            "fine level's value." + ("" if morphing is None else
+            f" Morphing: the {MORPHING_LEVEL} level with the six-DoF morphing distances × "
+            f"{morphing:g}, which are the same on every level so that neither GCI sees them; "
+            "a change larger than the levels' GCI says the morphing, not the mesh, limits "
+            "that quantity (not in U_num)."))
 
 
 def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]]]]:
@@ -221,8 +267,31 @@ def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]
     return out
 
 
+MORPHING_HEADER = ("quantity", MORPHING_LEVEL, "distances × F", "change", "GCI_fine (levels)")
+
+
+def morphing_rows(study: dict, dof: str) -> list[list[str]]:
+    """Rows of the morphing study's table (MORPHING_HEADER) of one DoF; none when not run."""
+    factor = study.get("morphing")
+    if factor is None:
+        return []
+    rows = []
+    for key, label, _ in QUANTITIES:
+        q = study["dofs"][dof]["quantities"][key]
+        m = q.get("morphing", {})
+        a, b = m.get("values", (None, None))
+        rows.append([label, _num(a), _num(b), _signed_pct(m.get("relative_change"))
+                     if "values" in m else m.get("note", ""), _pct(q["grid"].get("gci_fine"))])
+    return rows
+
+
+def _signed_pct(value) -> str:
+    return "—" if value is None else f"{100 * value:+.2g} %"
+
+
 SUMMARY_HEADER = ("case", "DoF", "runs", "T_d fine (s)", "levels", "GCI_fine levels",
-                  "dt/2 at", "GCI time", "U_num of T_d", "ζ fine", "U_num of ζ")
+                  "dt/2 at", "GCI time", "U_num of T_d", "ζ fine", "U_num of ζ",
+                  "ζ with distances × F")
 
 
 def summary_row(study: dict, dof: str) -> list[str]:
@@ -236,7 +305,13 @@ def summary_row(study: dict, dof: str) -> list[str]:
             _pct(period["grid"].get("gci_fine")), study.get("time_step_level", "fine"),
             _pct(period["time"].get("gci_coarse")),
             _pct(period["uncertainty"]), _num(fine.get("damping_ratio"), ".3g"),
-            _pct(zeta["uncertainty"])]
+            _pct(zeta["uncertainty"]), _morphing_cell(study, zeta.get("morphing", {}))]
+
+
+def _morphing_cell(study: dict, morphing: dict) -> str:
+    if "values" not in morphing:
+        return "—"
+    return f"{_signed_pct(morphing['relative_change'])} (× {study['morphing']:g})"
 
 
 def study_markdown(study: dict) -> str:
@@ -248,7 +323,12 @@ def study_markdown(study: dict) -> str:
     lines = [f"# {study['case']}: grid and time-step convergence", ""]
     for dof, runs, rows in study_tables(study):
         lines += [f"## {dof}", "", *table(RUNS_HEADER, runs), *table(GCI_HEADER, rows)]
-    return "\n".join([*lines, method(study.get("time_step_level", "fine")), ""])
+        morphing = morphing_rows(study, dof)
+        if morphing:
+            lines += [f"Morphing distances × {study['morphing']:g} at the {MORPHING_LEVEL} "
+                      "level:", "", *table(MORPHING_HEADER, morphing)]
+    return "\n".join([*lines, method(study.get("time_step_level", "fine"),
+                                     study.get("morphing")), ""])
 
 
 def write_study(study: dict, out_dir: Path) -> list[Path]:

@@ -25,6 +25,10 @@ def register(sub) -> None:
     p.add_argument("--dt-divisor", type=int, default=1, metavar="K",
                    help="divide the level's time-step limits (largest step, Courant numbers) "
                         "by K: a time-step study, run in <level>-dt<K> (default 1)")
+    p.add_argument("--morphing", type=float, default=1.0, metavar="F",
+                   help="multiply the six-DoF morphing distances (run.inner_distance and "
+                        "run.outer_distance, or their defaults) by F: a morphing study, run in "
+                        "<level>-morph<F> (default 1)")
     p.set_defaults(func=run)
 
 
@@ -44,7 +48,8 @@ def run(args) -> int:
             raise InputError(f"--level {args.level!r}: valid levels are {', '.join(LEVELS)}")
         eq = equilibrium(case)  # solved once, handed to the rendering and the summary
         result = run_case(case, args.level, args.np, args.force, equilibrium=eq,
-                          hostfile=args.hostfile, time_step_divisor=args.dt_divisor)
+                          hostfile=args.hostfile, time_step_divisor=args.dt_divisor,
+                          morphing=args.morphing)
     except RunError as err:
         _say(f"floatfoam run: {err}")
         return 1

@@ -1,7 +1,8 @@
 """``floatfoam validate CASE``: the grid and time-step convergence study of a case's CFD.
 
 Runs (or resumes, or reuses when finished) the coarse, medium and fine levels and the medium
-level (``--time-level fine``: the fine one) with its time steps halved, then writes
+level (``--time-level fine``: the fine one) with its time steps halved — and with
+``--morphing F`` the coarse level with its six-DoF morphing distances times F — then writes
 ``<build>/<case>/validation/`` (validation.json, validation.md, convergence.png:
 :mod:`floatfoam.analysis.validation`).
 """
@@ -25,6 +26,10 @@ def register(sub) -> None:
                    help="the level run once more with its time steps halved: medium "
                    "(default: taken for the fine level's time error) or fine (its own, for "
                    "about four times that run's cost)")
+    p.add_argument("--morphing", type=float, default=None, metavar="F",
+                   help="also run the coarse level with its six-DoF morphing distances times "
+                   "F (1.5, say), which no level changes, and report how much each quantity "
+                   "moves with them")
     p.add_argument("--no-run", action="store_true",
                    help="analyse the finished runs only; run nothing")
     p.set_defaults(func=run)
@@ -44,23 +49,24 @@ def run(args) -> int:
 
     case = load_case(args.case, args.overrides)
     check_ranks(args.np, None)
-    runs = plan(args.time_level)
+    runs = plan(args.time_level, args.morphing)
     build = layout.build_dir()
     if not args.no_run:
         eq = equilibrium(case)
-        for level, divisor in runs:  # every run checked before the first starts
-            check_run(case, level, args.np, eq, build_dir=build, time_step_divisor=divisor)
-        names = [layout.run_name(level, k) for level, k in runs]
+        for level, divisor, factor in runs:  # every run checked before the first starts
+            check_run(case, level, args.np, eq, build_dir=build, time_step_divisor=divisor,
+                      morphing=factor)
+        names = [layout.run_name(*run) for run in runs]
         print(f"[validate {case.name}] {len(runs)} runs on {args.np} rank(s): "
               f"{', '.join(names)} (finished ones are reused, interrupted ones resume)",
               file=sys.stderr)
-        for i, (level, divisor) in enumerate(runs, 1):
-            name = layout.run_name(level, divisor)
+        for i, (level, divisor, factor) in enumerate(runs, 1):
+            name = layout.run_name(level, divisor, factor)
             start = time.monotonic()
             print(f"[validate {case.name}] run {i}/{len(runs)}: {name}", file=sys.stderr)
             try:
                 done = run_case(case, level, args.np, equilibrium=eq,
-                                  time_step_divisor=divisor)
+                                  time_step_divisor=divisor, morphing=factor)
             except RunError as err:
                 print(f"floatfoam validate: run {name} failed: {err}", file=sys.stderr)
                 return 1
@@ -71,7 +77,7 @@ def run(args) -> int:
                 f"{time.monotonic() - start:.0f} s wall"
             print(f"[validate {case.name}] {name}: {done.info.get('cells')} cells, {what}",
                   file=sys.stderr)
-    result = validate_case(case, build, args.time_level)
+    result = validate_case(case, build, args.time_level, args.morphing)
     if not result["runs"]:
         raise InputError(f"case {case.name!r} has no finished run under {build}; valid: run "
                          "`floatfoam validate` without --no-run first")

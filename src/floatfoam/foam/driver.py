@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 import shutil
 import sys
@@ -71,11 +72,12 @@ def solver_path(case: Case) -> Path:
 
 
 def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None,
-                 divisor: int = 1) -> tuple[Path, bool | None]:
+                 divisor: int = 1, morphing: float = 1.0) -> tuple[Path, bool | None]:
     """The run directory and what it holds: None (nothing), True (a finished run of these
     settings), False (an unfinished one to resume). Raises InputError when it holds a run of
     other settings (or --np). Writes nothing."""
-    run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor)
+    run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor,
+                             morphing=morphing)
     if not run_dir.exists():
         return run_dir, None
     stamp = run_dir / layout.MARKERS / "settings"
@@ -90,9 +92,11 @@ def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None
 
 
 def prepare(case: Case, level: str, np_: int, force: bool,
-            build_dir: Path | None = None, divisor: int = 1) -> tuple[Path, bool, bool]:
+            build_dir: Path | None = None, divisor: int = 1,
+            morphing: float = 1.0) -> tuple[Path, bool, bool]:
     """The run directory, whether it resumes, and whether it is already finished."""
-    run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor)
+    run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor,
+                             morphing=morphing)
     digest = settings_digest(case, level)
     stamp = run_dir / layout.MARKERS / "settings"
     if run_dir.exists():
@@ -100,7 +104,7 @@ def prepare(case: Case, level: str, np_: int, force: bool,
             moved = runner.move_aside(run_dir)
             print(f"[{case.name}/{run_dir.name}] earlier run moved to {moved}")
         else:
-            _, finished = existing_run(case, level, np_, build_dir, divisor)
+            _, finished = existing_run(case, level, np_, build_dir, divisor, morphing)
             return run_dir, not finished, bool(finished)
     (run_dir / layout.MARKERS).mkdir(parents=True)
     stamp.write_text(f"{digest} {np_}\n")
@@ -109,12 +113,15 @@ def prepare(case: Case, level: str, np_: int, force: bool,
 
 def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = False,
              build_dir: Path | None = None, *, equilibrium: Equilibrium | None = None,
-             hostfile: Path | None = None, time_step_divisor: int = 1) -> RunResult:
+             hostfile: Path | None = None, time_step_divisor: int = 1,
+             morphing: float = 1.0) -> RunResult:
     """Run ``case`` at ``level`` on ``np_`` MPI ranks (see the module docstring); the run
     directory is ``<build_dir>/<case>/<level>`` (:func:`floatfoam.layout.build_dir` by
     default). ``equilibrium`` is the case's (solved here when not given); ``hostfile`` goes to
     mpirun. ``time_step_divisor`` k > 1 divides the level's time-step limits (largest step,
-    Courant numbers) by k, in ``<level>-dt<k>``: a time-step study. Everything is checked
+    Courant numbers) by k, in ``<level>-dt<k>``: a time-step study; ``morphing`` f ≠ 1
+    multiplies its six-DoF morphing distances by f, in ``<level>-morph<f>``: a morphing study
+    (:func:`scaled_morphing`). Everything is checked
     before anything is written; the run holds the run directory's lock
     (:mod:`floatfoam.foam.runlock`) from start to end."""
     check_ranks(np_, hostfile)
@@ -126,11 +133,13 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
         equilibrium = solve(case)
     state = release_state(case, equilibrium)
     local = hostfile is None
+    case = scaled_morphing(case, level, state["pose"], morphing, local=local)
     mesh = domain.plan(case, level, state["pose"], local=local)  # bad input fails here
     end_time_of(case)
-    name = layout.run_name(level, time_step_divisor)
+    name = layout.run_name(level, time_step_divisor, morphing)
     label = f"{case.name}/{name}"
-    target = layout.run_dir(case.name, level, build_dir, time_step_divisor=time_step_divisor)
+    target = layout.run_dir(case.name, level, build_dir, time_step_divisor=time_step_divisor,
+                            morphing=morphing)
     runner.check_path(target)
     with tempfile.TemporaryDirectory(prefix="floatfoam-mesh-") as scratch:
         if mesh.mesher == "gmsh" and (force or not layout.step_done(target, "render")):
@@ -141,20 +150,23 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
                 print(f"[{label}] the run of PID {lock.stale_holder()} ended without "
                       "finishing; this run takes its place", file=sys.stderr)
             return _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh,
-                               lock, label, time_step_divisor)
+                               lock, label, time_step_divisor, morphing)
 
 
 def check_run(case: Case, level: str, np_: int, equilibrium: Equilibrium, *,
-              build_dir: Path | None = None, time_step_divisor: int = 1) -> None:
+              build_dir: Path | None = None, time_step_divisor: int = 1,
+              morphing: float = 1.0) -> None:
     """Everything :func:`run_case` checks before it writes, for a run to come (a study checks
     its four runs before the first starts): ranks, solver, the mesh's plan, the end time and
     what the run directory holds. Raises InputError; writes nothing."""
     check_ranks(np_, None)
     case = smaller_steps(case, time_step_divisor)
     solver_path(case)
-    domain.plan(case, level, release_state(case, equilibrium)["pose"], local=True)
+    pose = release_state(case, equilibrium)["pose"]
+    case = scaled_morphing(case, level, pose, morphing)
+    domain.plan(case, level, pose, local=True)
     end_time_of(case)
-    existing_run(case, level, np_, build_dir, time_step_divisor)
+    existing_run(case, level, np_, build_dir, time_step_divisor, morphing)
 
 
 def smaller_steps(case: Case, divisor: int) -> Case:
@@ -173,10 +185,33 @@ def smaller_steps(case: Case, divisor: int) -> Case:
                                  for key, value in limits.items() if value is not None])
 
 
+def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool = True) -> Case:
+    """The case with its six-DoF morphing distances — the mesh moves rigidly with the body
+    within run.inner_distance and is fixed beyond run.outer_distance, or their defaults from
+    the body's size (:mod:`floatfoam.foam.domain`) — both multiplied by ``factor`` > 0.
+
+    A morphing study: the damping ratio of the laboratory sphere's 0.3 D drop rose from 0.066
+    to 0.109 as the distances were widened from the defaults (0.09 and 0.48 m) to 0.2 and
+    1.2 m (cases/lab_sphere/README.md); a study of mesh levels cannot see that, since the
+    distances are the same on every level."""
+    if isinstance(factor, bool) or not isinstance(factor, (int, float)) \
+            or not (math.isfinite(factor) and factor > 0):
+        raise InputError(f"--morphing {factor!r}: valid is a factor > 0 (1.5: both morphing "
+                         "distances one and a half times the case's)")
+    if factor == 1:
+        return case
+    from floatfoam.case import with_overrides
+
+    mesh = domain.plan(case, level, pose, local=local)
+    return with_overrides(case, [f"run.inner_distance={mesh.inner * factor!r}",
+                                 f"run.outer_distance={mesh.outer * factor!r}"])
+
+
 def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
-                label, divisor=1) -> RunResult:
+                label, divisor=1, morphing=1.0) -> RunResult:
     """The steps of :func:`run_case`, under the run directory's lock."""
-    run_dir, resumed, finished = prepare(case, level, np_, force, build_dir, divisor)
+    run_dir, resumed, finished = prepare(case, level, np_, force, build_dir, divisor,
+                                         morphing)
     motion = run_dir / "motion.csv"
     info_file = run_dir / layout.MARKERS / "info.json"
     if finished:
