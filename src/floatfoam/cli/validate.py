@@ -36,8 +36,9 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    """Exit codes as ``floatfoam run``'s: 0 done, 1 a run failed, 2 bad input, 75 another run
-    holds a run directory, 128 + signal when interrupted (the same command resumes)."""
+    """Exit codes as ``floatfoam run``'s: 0 done, 1 a run failed (the others still run and the
+    study of what finished is written), 2 bad input, 75 another run holds a run directory,
+    128 + signal when interrupted (the same command resumes)."""
     from floatfoam import layout
     from floatfoam.analysis.validation import plan, study_markdown, validate_case, write_study
     from floatfoam.case import load_case
@@ -51,6 +52,7 @@ def run(args) -> int:
     check_ranks(args.np, None)
     runs = plan(args.time_level, args.morphing)
     build = layout.build_dir()
+    failed = []
     if not args.no_run:
         eq = equilibrium(case)
         for level, divisor, factor in runs:  # every run checked before the first starts
@@ -69,7 +71,8 @@ def run(args) -> int:
                                   time_step_divisor=divisor, morphing=factor)
             except RunError as err:
                 print(f"floatfoam validate: run {name} failed: {err}", file=sys.stderr)
-                return 1
+                failed.append(name)
+                continue
             except RunLockedError as err:
                 print(f"floatfoam validate: {err}", file=sys.stderr)
                 return EXIT_LOCKED
@@ -78,6 +81,8 @@ def run(args) -> int:
             print(f"[validate {case.name}] {name}: {done.info.get('cells')} cells, {what}",
                   file=sys.stderr)
     result = validate_case(case, build, args.time_level, args.morphing)
+    if not result["runs"] and failed:
+        return 1
     if not result["runs"]:
         raise InputError(f"case {case.name!r} has no finished run under {build}; valid: run "
                          "`floatfoam validate` without --no-run first")
@@ -85,4 +90,7 @@ def run(args) -> int:
     paths = write_study(result, Path(out))
     print(study_markdown(result))
     print("written: " + ", ".join(str(p) for p in paths))
-    return 0
+    if failed:
+        print(f"floatfoam validate: failed: {', '.join(failed)} (the study holds the others)",
+              file=sys.stderr)
+    return 1 if failed else 0
