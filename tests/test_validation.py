@@ -2,6 +2,7 @@
 the study of four runs on synthetic records with a known answer, and the time-step study's
 run (``--dt-divisor``). The CFD study itself is measured in cases/*/README.md (make validate)."""
 
+import dataclasses
 import json
 import math
 import shutil
@@ -110,7 +111,11 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
         period = (0.6 + 0.02 * h**2) * (0.997 if divisor > 1 else 1.0)
         _synthetic_run(tmp_path, layout.run_name(level, divisor, factor), cells[level], period,
                        0.12 if factor != 1 else 0.1, 0.002)
-    result = validate_case(load_case("cylinder_heave"), tmp_path, time_level, morphing)
+    # a measured damping ratio beside it (this test's own number): in the study, table and plot
+    case = dataclasses.replace(load_case("cylinder_heave"), reference={
+        "heave_damping_ratio": {"value": 0.098, "uncertainty": 0.004, "source": "this test"}})
+    result = validate_case(case, tmp_path, time_level, morphing)
+    assert result["dofs"]["heave"]["reference"] == {"damping_ratio": [0.098, 0.004, "this test"]}
     assert result["runs"][3] == f"{time_level}-dt2"
     zeta = result["dofs"]["heave"]["quantities"]["damping_ratio"]
     if morphing:
@@ -140,6 +145,7 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     assert all(p.is_file() and p.stat().st_size > 0 for p in paths)
     assert "monotonic convergence" in paths[1].read_text()
     assert f"the {time_level} level against its time steps halved" in paths[1].read_text()
+    assert "| 0.098 ± 0.004 |" in paths[1].read_text()
     assert ("Morphing distances × 1.5 at the coarse level" in paths[1].read_text()) == \
         bool(morphing)
     # the report gathers it: the study's tables and figure, and the extrapolated row

@@ -285,7 +285,7 @@ def _first_cycle_rows(case, dof, analyses, reference, study) -> list[dict]:
         rows.append(_row(case.name, label, f"CFD {run.level}", r.first_period,
                          zeta=r.damping_ratio,
                          note=f"first trough {r.first_trough * scale:.4g} {unit}"))
-    band = _band_row(case, label, dof, study, ("first_period", None))
+    band = _band_row(case, label, dof, study, ("first_period", "first_damping_ratio"))
     rows += [band] if band else []
     notes = [f"first trough {trough[0] * scale:.4g} {unit}"
              + (f" ± {trough[1] * scale:.2g}" if trough[1] else "")] if trough else []

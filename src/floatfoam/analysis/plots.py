@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from floatfoam import dofs
 from floatfoam.analysis.decay import DecayResult, log_decrement_damping
 
 
@@ -169,13 +170,22 @@ def plot_decay(path: str | Path, time, value, result: DecayResult, *,
 def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
     """Each quantity of a grid study (``floatfoam.analysis.validation``) against the cell size
     h/h_fine, one row per DoF: the three levels with the fine one's ± U_num, the level run with
-    its time step halved (at that level's h), and at h = 0 the Richardson-extrapolated value."""
+    its time step halved (at that level's h), the coarse one with its morphing distances
+    scaled, at h = 0 the Richardson-extrapolated value, and the case's measurement (a line and
+    its uncertainty's band) where its ``[reference]`` has one."""
     entries = list(study["dofs"].items()) or [("—", {"runs": {}, "quantities": {}})]
-    fig = Figure(figsize=(4 * len(quantities), 3.2 * len(entries)), layout="constrained")
-    axes = fig.subplots(len(entries), len(quantities), squeeze=False)
-    for row, (dof, entry) in zip(axes, entries, strict=True):
-        for ax, (key, label, unit) in zip(row, quantities, strict=True):
+    columns = min(3, len(quantities))
+    per_dof = -(-len(quantities) // columns)  # rows of panels per DoF
+    fig = Figure(figsize=(4 * columns, 3.2 * per_dof * len(entries)), layout="constrained")
+    axes = fig.subplots(per_dof * len(entries), columns, squeeze=False).ravel()
+    for i, (dof, entry) in enumerate(entries):
+        panels = axes[i * per_dof * columns:(i + 1) * per_dof * columns]
+        for ax, (key, label, unit) in zip(panels, quantities, strict=False):
+            if unit == "m or rad":  # a length or an angle, in code units
+                unit = "rad" if dof in dofs.NAMES and dofs.dof(dof).is_angle else "m"
             _convergence_panel(ax, dof, entry, key, label, unit)
+        for ax in panels[len(quantities):]:
+            ax.set_visible(False)
     fig.suptitle(f"{study['case']}: grid and time-step convergence")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -209,6 +219,13 @@ def _convergence_panel(ax, dof, entry, key, label, unit) -> None:
     if grid.get("extrapolated") is not None:
         ax.plot([0.0], [grid["extrapolated"]], "D", color="C1",
                 label=f"extrapolated, p = {grid['order']:.2g}")
+    measured = entry.get("reference", {}).get(key)
+    if measured is not None:
+        value, uncertainty, source = measured
+        ax.axhline(value, color="k", lw=1, label=f"measured ({source})" if source
+                   else "measured")
+        if uncertainty:
+            ax.axhspan(value - uncertainty, value + uncertainty, color="0.85", zorder=0)
     kind = grid.get("kind") or grid.get("note") or ""
     ax.set_title(f"{dof}: {label}\n{kind}", fontsize=9)
     ax.set_xlabel("h / h_fine")

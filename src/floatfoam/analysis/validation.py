@@ -2,9 +2,11 @@
 
 ``floatfoam validate CASE`` runs the case at the three mesh levels and once more at the medium
 level with its time steps halved (:func:`plan`); this module analyses those four runs. For
-each DoF the release excites and each quantity (:data:`QUANTITIES`: the damped period of the
-whole record, the first period — twice the first trough's time between zero crossings,
-:func:`floatfoam.analysis.extrema.crossing_reduction` — and the damping ratio) it gives
+each DoF the release excites and each quantity (:data:`QUANTITIES`: the damped period and
+damping ratio of the whole record's fit, and the first cycles as a basin reduces its records,
+:func:`floatfoam.analysis.extrema.crossing_reduction` — the first period, twice the first
+trough's time between zero crossings, ζ of the first six extrema and the first trough —, each
+beside the case's ``[reference]`` measurement of it where there is one) it gives
 
 * the study of Celik et al. (2008) on coarse, medium, fine (:mod:`floatfoam.analysis.gci`:
   observed order, Richardson extrapolation, GCI_fine — or the word for how it fails to
@@ -45,7 +47,7 @@ from pathlib import Path
 
 from floatfoam import layout
 from floatfoam.analysis import gci
-from floatfoam.analysis.compare import analyse_run, excited_dofs, first_cycles
+from floatfoam.analysis.compare import analyse_run, excited_dofs, first_cycles, reference_entry
 from floatfoam.analysis.uncertainty import STUDY_FILE
 from floatfoam.errors import InputError
 from floatfoam.jsonfile import dump_json
@@ -83,7 +85,9 @@ TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
 #: key, label, unit of each quantity of the study
 QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
               ("first_period", "first period (first trough's crossings)", "s"),
-              ("damping_ratio", "damping ratio ζ", ""))
+              ("damping_ratio", "damping ratio ζ", ""),
+              ("first_damping_ratio", "ζ of the first 6 extrema", ""),
+              ("first_trough", "first trough below the settled level", "m or rad"))
 
 
 @dataclass
@@ -126,11 +130,13 @@ def _run_values(name: str, divisor: int, run: Path, dof: str,
         return out
     s = result.summary()
     try:
-        first = first_cycles(time, value, result).first_period
-    except ValueError:
+        first = first_cycles(time, value, result)
+    except ValueError:  # fewer than six extrema
         first = None
-    out.values = {"period": s["period_mean"], "first_period": first,
-                  "damping_ratio": s["damping_ratio"]}
+    out.values = {"period": s["period_mean"], "damping_ratio": s["damping_ratio"],
+                  **{key: getattr(first, field) if first else None for key, field in (
+                      ("first_period", "first_period"), ("first_damping_ratio", "damping_ratio"),
+                      ("first_trough", "first_trough"))}}
     out.note = f"{s['n_cycles']:.1f} cycles"
     return out
 
@@ -215,12 +221,31 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
                 "time": time.as_dict() if not isinstance(time, str) else {"note": time},
                 "uncertainty": numerical_uncertainty(grid, time),
                 "morphing": morphing_study(runs, key, morphing)}
+        entry["reference"] = measured(case, dof)
         out["dofs"][dof] = entry
+    return out
+
+
+def measured(case, dof: str) -> dict:
+    """The case's ``[reference]`` values of the study's quantities, ``<dof>_<key>`` (code
+    units): key → [value, uncertainty or None, source]."""
+    out = {}
+    for key, _, _ in QUANTITIES:
+        entry = reference_entry(case.reference or {}, f"{dof}_{key}")
+        if entry is not None:
+            out[key] = list(entry)
     return out
 
 
 def _num(value, spec=".5g") -> str:
     return "—" if value is None else format(value, spec)
+
+
+def _measured_cell(entry) -> str:
+    if entry is None:
+        return "—"
+    value, uncertainty, _ = entry
+    return _num(value) + (f" ± {uncertainty:.2g}" if uncertainty is not None else "")
 
 
 def _pct(value) -> str:
@@ -229,7 +254,7 @@ def _pct(value) -> str:
 
 RUNS_HEADER = ("run", "cells", *(label for _, label, _ in QUANTITIES), "note")
 GCI_HEADER = ("quantity", "convergence", "order p", "extrapolated", "e_a21",
-              "GCI_fine (levels)", "Δ with dt/2", "GCI (time)", "U_num")
+              "GCI_fine (levels)", "Δ with dt/2", "GCI (time)", "U_num", "measured")
 def method(time_level: str = TIME_STEP_LEVEL, morphing: float | None = None) -> str:
     """How the study's numbers are made, for the foot of its table."""
     bound = ("" if time_level == "fine" else
@@ -262,7 +287,8 @@ def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]
                          _num(g.get("extrapolated")), _pct(g.get("relative_error")),
                          _pct(g.get("gci_fine")),
                          _pct(t.get("relative_error")) if "values" in t else t.get("note", ""),
-                         _pct(t.get("gci_coarse")), _pct(q["uncertainty"])])
+                         _pct(t.get("gci_coarse")), _pct(q["uncertainty"]),
+                         _measured_cell(entry.get("reference", {}).get(key))])
         out.append((dof, runs, rows))
     return out
 
