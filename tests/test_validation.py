@@ -120,6 +120,8 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     zeta = result["dofs"]["heave"]["quantities"]["damping_ratio"]
     if morphing:
         assert result["runs"][4] == "coarse-morph1.5"
+        # analysed again without --morphing, the study keeps the morphing run it has
+        assert validate_case(case, tmp_path, time_level)["morphing"] == 1.5
         # the fit of a 2 ms-sampled record recovers ζ to ~1e-4 of 0.1: the change within 1 %
         assert zeta["morphing"]["relative_change"] == pytest.approx(0.2, rel=0.01)
         assert result["dofs"]["heave"]["quantities"]["period"]["morphing"][

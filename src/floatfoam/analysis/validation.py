@@ -116,6 +116,21 @@ def study_runs(case_name: str, build: Path, time_level: str = TIME_STEP_LEVEL,
     return out
 
 
+def finished_morphing(case_name: str, build: Path) -> float | None:
+    """The factor of the latest finished ``<MORPHING_LEVEL>-morph<F>`` run of a case, or None:
+    a study analysed again without ``--morphing`` keeps the morphing run it has."""
+    prefix = f"{MORPHING_LEVEL}-morph"
+    found = []
+    for run in layout.case_build_dir(case_name, build).glob(prefix + "*"):
+        try:
+            factor = float(run.name[len(prefix):])
+        except ValueError:
+            continue
+        if layout.is_finished(run) and (run / "motion.csv").is_file():
+            found.append((layout.marker(run, layout.FINISHED).stat().st_mtime, factor))
+    return max(found)[1] if found else None
+
+
 def _run_values(name: str, divisor: int, run: Path, dof: str,
                 morphing: float = 1.0) -> RunValues:
     info_file = run / layout.MARKERS / "info.json"
@@ -197,8 +212,10 @@ def numerical_uncertainty(grid, time) -> float | None:
 
 def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_LEVEL,
                   morphing: float | None = None) -> dict:
-    """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict."""
+    """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict.
+    ``morphing`` None takes the finished morphing run there is, if any (the latest)."""
     build = Path(build or layout.build_dir())
+    morphing = morphing if morphing is not None else finished_morphing(case.name, build)
     found = study_runs(case.name, build, time_level, morphing)
     other = [level for level in TIME_STEP_LEVELS if level != time_level and layout.is_finished(
         layout.run_dir(case.name, level, build, time_step_divisor=TIME_STEP_DIVISOR))]
