@@ -336,3 +336,33 @@ def test_a_measured_record_that_is_not_one_is_refused(tmp_path):
     (folder / "kramer2021_01D_rep3.csv").unlink()  # missing: refused when the case loads
     with pytest.raises(InputError, match=r"reference\.heave_record = .*valid is a table"):
         load_case(str(folder))
+
+
+def test_a_failed_run_leaves_the_study_of_the_others(tmp_path, monkeypatch):
+    """Control flow only, no solver: when one run of the study fails (here the halved time
+    step, made to raise RunError), the others are still analysed and written, and the
+    command exits 1 naming the failed run."""
+    from floatfoam.cli import build_parser
+    from floatfoam.cli import validate as cli_validate
+    from floatfoam.foam import driver
+    from floatfoam.foam.runner import RunError
+
+    cells = {"coarse": 11280, "medium": 22857, "fine": 45120}
+    for level, n in cells.items():
+        _synthetic_run(tmp_path, level, n, 0.6 + 0.02 * (cells["fine"] / n), 0.1, 0.002)
+    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path))
+    monkeypatch.setattr(driver, "check_run", lambda *a, **k: None)
+
+    def run_case(case, level, np_, *, equilibrium, time_step_divisor=1, morphing=1.0):
+        run = layout.run_dir(case.name, level, tmp_path, time_step_divisor=time_step_divisor)
+        if time_step_divisor == 1:
+            return driver.RunResult(run, run / "motion.csv", {"cells": cells[level]}, False, True)
+        raise RunError(f"{case.name}/{run.name}: diverged (raised by this test)")
+
+    monkeypatch.setattr(driver, "run_case", run_case)
+    args = build_parser().parse_args(["validate", "cylinder_heave"])
+    assert cli_validate.run(args) == 1
+    study = json.loads((tmp_path / "cylinder_heave" / "validation" / "validation.json")
+                       .read_text())
+    assert study["runs"] == ["coarse", "medium", "fine"]
+    assert study["dofs"]["heave"]["quantities"]["period"]["grid"]["kind"] == gci.MONOTONIC
