@@ -120,8 +120,6 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     zeta = result["dofs"]["heave"]["quantities"]["damping_ratio"]
     if morphing:
         assert result["runs"][4] == "coarse-morph1.5"
-        # analysed again without --morphing, the study keeps the morphing run it has
-        assert validate_case(case, tmp_path, time_level)["morphing"] == 1.5
         # the fit of a 2 ms-sampled record recovers ζ to ~1e-4 of 0.1: the change within 1 %
         assert zeta["morphing"]["relative_change"] == pytest.approx(0.2, rel=0.01)
         assert result["dofs"]["heave"]["quantities"]["period"]["morphing"][
@@ -150,6 +148,10 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     assert "| 0.098 ± 0.004 |" in paths[1].read_text()
     assert ("Morphing distances × 1.5 at the coarse level" in paths[1].read_text()) == \
         bool(morphing)
+    # analysed again without --morphing, the study keeps the morphing run it had, and not a
+    # later one (ζ 0.5: it would show)
+    _synthetic_run(tmp_path, "coarse-morph2", cells["coarse"], 0.62, 0.05, 0.002)
+    assert validate_case(case, tmp_path, time_level)["morphing"] == morphing
     # the report gathers it: the study's tables and figure, and the extrapolated row
     cases = tmp_path / "cases"
     shutil.copytree(layout.CASES_DIR / "cylinder_heave", cases / "cylinder_heave")
@@ -207,6 +209,7 @@ def test_scaled_morphing_is_another_run(name, inner, outer):
     (["validate", "cylinder_heave", "--morphing", "1"], "--morphing"),
     (["validate", "cylinder_heave", "--morphing", "-2"], "--morphing"),
     (["run", "cylinder_heave", "--morphing", "0"], "--morphing"),
+    (["run", "cylinder_heave", "--morphing", "1.0000001"], "significant digits"),
 ])
 def test_bad_input_is_one_line_and_writes_nothing(tmp_path, argv, word):
     env = {"FLOATFOAM_BUILD": str(tmp_path), "PATH": "/usr/bin:/bin"}
@@ -366,3 +369,24 @@ def test_a_failed_run_leaves_the_study_of_the_others(tmp_path, monkeypatch):
                        .read_text())
     assert study["runs"] == ["coarse", "medium", "fine"]
     assert study["dofs"]["heave"]["quantities"]["period"]["grid"]["kind"] == gci.MONOTONIC
+
+
+def test_a_study_written_before_a_quantity_joined_it_still_reports(tmp_path):
+    """validation.json from before the first cycles' ζ and trough, the measured column and the
+    morphing run joined the study: its tables say so instead of failing."""
+    from floatfoam.analysis.validation import morphing_rows, study_markdown, study_tables
+
+    old = {"case": "cylinder_heave", "runs": ["coarse"], "time_step_level": "medium",
+           "dofs": {"heave": {"runs": {"coarse": {"cells": 11280, "dimension": 2, "divisor": 1,
+                                                  "period": 0.612, "first_period": 0.644,
+                                                  "damping_ratio": 0.13, "note": ""}},
+                              "quantities": {key: {"grid": {"note": "needs the three levels"},
+                                                   "time": {"note": "needs"},
+                                                   "uncertainty": None}
+                                             for key in ("period", "first_period",
+                                                         "damping_ratio")}}}}
+    (_, _, rows), = study_tables(old)
+    assert [r[1] for r in rows[3:]] == ["not in this study (written before it was added: "
+                                         "floatfoam validate --no-run)"] * 2
+    assert morphing_rows(old, "heave") == []
+    assert "## heave" in study_markdown(old)

@@ -1,7 +1,8 @@
 """Verification of a case's CFD: grid and time-step convergence of its period and damping.
 
 ``floatfoam validate CASE`` runs the case at the three mesh levels and once more at the medium
-level with its time steps halved (:func:`plan`); this module analyses those four runs. For
+level with its time steps halved (:func:`plan`; with ``--morphing F`` a fifth run); this module
+analyses them. For
 each DoF the release excites and each quantity (:data:`QUANTITIES`: the damped period and
 damping ratio of the whole record's fit, and the first cycles as a basin reduces its records,
 :func:`floatfoam.analysis.extrema.crossing_reduction` — the first period, twice the first
@@ -72,10 +73,10 @@ def plan(time_level: str = TIME_STEP_LEVEL,
     if time_level not in TIME_STEP_LEVELS:
         raise InputError(f"--time-level {time_level!r} is not a level whose time steps a "
                          "study halves; valid: " + ", ".join(TIME_STEP_LEVELS))
-    if morphing is not None and (not math.isfinite(morphing) or morphing <= 0
-                                 or morphing == 1):
-        raise InputError(f"--morphing {morphing:g}: valid is a factor > 0 other than 1 (1.5: "
-                         "both morphing distances one and a half times the case's)")
+    if morphing is not None:
+        from floatfoam.foam.driver import check_morphing
+
+        check_morphing(morphing, study=True)
     runs = (("coarse", 1, 1.0), ("medium", 1, 1.0), ("fine", 1, 1.0),
             (time_level, TIME_STEP_DIVISOR, 1.0))
     return runs if morphing is None else (*runs, (MORPHING_LEVEL, 1, float(morphing)))
@@ -117,18 +118,18 @@ def study_runs(case_name: str, build: Path, time_level: str = TIME_STEP_LEVEL,
 
 
 def finished_morphing(case_name: str, build: Path) -> float | None:
-    """The factor of the latest finished ``<MORPHING_LEVEL>-morph<F>`` run of a case, or None:
-    a study analysed again without ``--morphing`` keeps the morphing run it has."""
-    prefix = f"{MORPHING_LEVEL}-morph"
-    found = []
-    for run in layout.case_build_dir(case_name, build).glob(prefix + "*"):
-        try:
-            factor = float(run.name[len(prefix):])
-        except ValueError:
-            continue
-        if layout.is_finished(run) and (run / "motion.csv").is_file():
-            found.append((layout.marker(run, layout.FINISHED).stat().st_mtime, factor))
-    return max(found)[1] if found else None
+    """The morphing factor of the study already written for a case, when its run is still
+    finished there, or None: a study analysed again without ``--morphing`` keeps the morphing
+    run it had (not whichever ``floatfoam run --morphing`` finished last)."""
+    path = layout.case_build_dir(case_name, build) / "validation" / STUDY_FILE
+    try:
+        factor = json.loads(path.read_text()).get("morphing")
+    except (OSError, ValueError):
+        return None
+    if not isinstance(factor, (int, float)) or isinstance(factor, bool):
+        return None
+    run = layout.run_dir(case_name, MORPHING_LEVEL, build, morphing=float(factor))
+    return float(factor) if layout.is_finished(run) else None
 
 
 def _run_values(name: str, divisor: int, run: Path, dof: str,
@@ -149,7 +150,7 @@ def _run_values(name: str, divisor: int, run: Path, dof: str,
     except ValueError:  # fewer than six extrema
         first = None
     out.values = {"period": s["period_mean"], "damping_ratio": s["damping_ratio"],
-                  **{key: getattr(first, field) if first else None for key, field in (
+                  **{key: getattr(first, attr) if first else None for key, attr in (
                       ("first_period", "first_period"), ("first_damping_ratio", "damping_ratio"),
                       ("first_trough", "first_trough"))}}
     out.note = f"{s['n_cycles']:.1f} cycles"
@@ -269,6 +270,8 @@ def _pct(value) -> str:
     return "—" if value is None else f"{100 * value:.2g} %"
 
 
+#: the row of a quantity that a study written by an earlier floatfoam does not hold
+OLDER_STUDY = "not in this study (written before it was added: floatfoam validate --no-run)"
 RUNS_HEADER = ("run", "cells", *(label for _, label, _ in QUANTITIES), "note")
 GCI_HEADER = ("quantity", "convergence", "order p", "extrapolated", "e_a21",
               "GCI_fine (levels)", "Δ with dt/2", "GCI (time)", "U_num", "measured")
@@ -298,7 +301,10 @@ def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]
                  run["note"]] for name, run in entry["runs"].items()]
         rows = []
         for key, label, _ in QUANTITIES:
-            q = entry["quantities"][key]
+            q = entry["quantities"].get(key)
+            if q is None:  # a study written before the quantity joined it
+                rows.append([label, OLDER_STUDY, *("—",) * (len(GCI_HEADER) - 2)])
+                continue
             g, t = q["grid"], q["time"]
             rows.append([label, g.get("kind", g.get("note", "")), _num(g.get("order"), ".3g"),
                          _num(g.get("extrapolated")), _pct(g.get("relative_error")),
@@ -320,7 +326,9 @@ def morphing_rows(study: dict, dof: str) -> list[list[str]]:
         return []
     rows = []
     for key, label, _ in QUANTITIES:
-        q = study["dofs"][dof]["quantities"][key]
+        q = study["dofs"][dof]["quantities"].get(key)
+        if q is None:
+            continue
         m = q.get("morphing", {})
         a, b = m.get("values", (None, None))
         rows.append([label, _num(a), _num(b), _signed_pct(m.get("relative_change"))

@@ -87,7 +87,8 @@ def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None
     if old[0] not in known or old[1] != str(np_):
         what = "a finished run" if finished else "an unfinished run"
         raise InputError(f"{run_dir} holds {what} with other settings (or --np); valid: "
-                         "the same settings to resume, or --force to move it aside")
+                         "the same settings to resume, or `floatfoam run` with --force to "
+                         "move it aside")
     return run_dir, finished
 
 
@@ -125,6 +126,7 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     before anything is written; the run holds the run directory's lock
     (:mod:`floatfoam.foam.runlock`) from start to end."""
     check_ranks(np_, hostfile)
+    check_morphing(morphing)
     case = smaller_steps(case, time_step_divisor)
     solver_path(case)  # refused before anything is done when missing
     if equilibrium is None:
@@ -157,9 +159,10 @@ def check_run(case: Case, level: str, np_: int, equilibrium: Equilibrium, *,
               build_dir: Path | None = None, time_step_divisor: int = 1,
               morphing: float = 1.0) -> None:
     """Everything :func:`run_case` checks before it writes, for a run to come (a study checks
-    its four runs before the first starts): ranks, solver, the mesh's plan, the end time and
+    runs before the first starts): ranks, solver, the mesh's plan, the end time and
     what the run directory holds. Raises InputError; writes nothing."""
     check_ranks(np_, None)
+    check_morphing(morphing)
     case = smaller_steps(case, time_step_divisor)
     solver_path(case)
     pose = release_state(case, equilibrium)["pose"]
@@ -185,6 +188,18 @@ def smaller_steps(case: Case, divisor: int) -> Case:
                                  for key, value in limits.items() if value is not None])
 
 
+def check_morphing(factor: float, *, study: bool = False) -> None:
+    """A morphing factor must be > 0 and name its run folder exactly (at most 6 significant
+    digits: ``<level>-morph<F>``); a study's must not be 1, which is the coarse run itself."""
+    valid = (not isinstance(factor, bool) and isinstance(factor, (int, float))
+             and math.isfinite(factor) and factor > 0 and float(f"{factor:g}") == factor
+             and not (study and factor == 1))
+    if not valid:
+        raise InputError(f"--morphing {factor!r}: valid is a factor > 0 of at most 6 "
+                         "significant digits" + (" other than 1" if study else "") +
+                         " (1.5: both morphing distances one and a half times the case's)")
+
+
 def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool = True) -> Case:
     """The case with its six-DoF morphing distances — the mesh moves rigidly with the body
     within run.inner_distance and is fixed beyond run.outer_distance, or their defaults from
@@ -194,10 +209,7 @@ def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool 
     to 0.109 as the distances were widened from the defaults (0.09 and 0.48 m) to 0.2 and
     1.2 m (cases/lab_sphere/README.md); a study of mesh levels cannot see that, since the
     distances are the same on every level."""
-    if isinstance(factor, bool) or not isinstance(factor, (int, float)) \
-            or not (math.isfinite(factor) and factor > 0):
-        raise InputError(f"--morphing {factor!r}: valid is a factor > 0 (1.5: both morphing "
-                         "distances one and a half times the case's)")
+    check_morphing(factor)
     if factor == 1:
         return case
     from floatfoam.case import with_overrides
