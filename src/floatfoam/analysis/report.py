@@ -270,9 +270,10 @@ def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir:
         doc.paragraph(f"{dof}:")
         doc.table(RUNS_HEADER, runs)
         doc.table(GCI_HEADER, rows)
-        if morphing_rows(study, dof):
+        morphing = morphing_rows(study, dof)
+        if morphing:
             doc.paragraph(f"{dof}, morphing distances × {study['morphing']:g}:")
-            doc.table(MORPHING_HEADER, morphing_rows(study, dof))
+            doc.table(MORPHING_HEADER, morphing)
     doc.paragraph(method(study.get("time_step_level", "fine"), study.get("morphing")),
                   note=True)
     figure = layout.case_build_dir(case_name, build_dir) / "validation" / "convergence.png"

@@ -150,9 +150,9 @@ def _run_values(name: str, divisor: int, run: Path, dof: str,
     except ValueError:  # fewer than six extrema
         first = None
     out.values = {"period": s["period_mean"], "damping_ratio": s["damping_ratio"],
-                  **{key: getattr(first, attr) if first else None for key, attr in (
-                      ("first_period", "first_period"), ("first_damping_ratio", "damping_ratio"),
-                      ("first_trough", "first_trough"))}}
+                  "first_period": first.first_period if first else None,
+                  "first_damping_ratio": first.damping_ratio if first else None,
+                  "first_trough": first.first_trough if first else None}
     out.note = f"{s['n_cycles']:.1f} cycles"
     return out
 
@@ -214,7 +214,8 @@ def numerical_uncertainty(grid, time) -> float | None:
 def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_LEVEL,
                   morphing: float | None = None) -> dict:
     """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict.
-    ``morphing`` None takes the finished morphing run there is, if any (the latest)."""
+    ``morphing`` None keeps the morphing run of the study already written, if it is still
+    finished (:func:`finished_morphing`)."""
     build = Path(build or layout.build_dir())
     morphing = morphing if morphing is not None else finished_morphing(case.name, build)
     found = study_runs(case.name, build, time_level, morphing)
