@@ -17,7 +17,9 @@ trim → heave, roll, pitch) or lists a reference for:
 * **reference**: the measured value of the case's ``[reference]`` table (value ± uncertainty);
 * **<dof>, first 3 cycles**: when the reference gives the first cycles of a measured record
   (``<dof>_first_period``, ``_first_damping_ratio``, ``_first_trough``), each CFD record
-  reduced the same way (:func:`floatfoam.analysis.extrema.crossing_reduction`).
+  and Cummins' potential-flow model with the exact restoring force
+  (:func:`potential_first_cycles`, with the potential flow) reduced the same way
+  (:func:`floatfoam.analysis.extrema.crossing_reduction`).
 
 Relative differences are taken against the reference where the case has one, else against the
 exact linear theory (periods only: the theory has no damping). A CFD record that cannot be
@@ -162,6 +164,19 @@ def first_cycles(time, value, result: DecayResult):
     return crossing_reduction(time, value, level=float(result.fit.mean_level(time[-1])))
 
 
+def potential_first_cycles(case, dof: str):
+    """Cummins' potential-flow model with the body's exact restoring force (`floatfoam
+    decay-model CASE --model cummins --nonlinear-restoring`), its record of DoF ``dof`` reduced
+    as a measured record's first cycles (:func:`crossing_reduction`, about its settled level:
+    the model's record runs until it has settled)."""
+    from floatfoam.potential.models import decay_series
+    from floatfoam.potential.radiation import radiation_coefficients
+
+    series = decay_series(case, "cummins", nonlinear_restoring=True,
+                          coefficients=radiation_coefficients(case))
+    return crossing_reduction(*dof_series(series, dof))
+
+
 def analyse_run(path: Path, dof: str, **options) -> tuple[object, object, DecayResult]:
     """Time, value (code units) and decay analysis of one DoF of a motion CSV."""
     time, value = dof_series(read_motion(path), dof)
@@ -263,18 +278,30 @@ def _band_row(case, label, dof, study, keys) -> dict | None:
                 "; ".join(filter(None, ("grid and time-step study (floatfoam validate)", ext))))
 
 
-def _first_cycle_rows(case, dof, analyses, reference, study) -> list[dict]:
+def _first_cycle_rows(case, dof, analyses, reference, study, potential: bool,
+                      notes: list[str]) -> list[dict]:
     """The first cycles of each CFD record reduced as the case's reference reduces its
     measurements (:func:`first_cycles`: the first period from the first trough's zero
     crossings, ζ over the first six extrema, the first trough), beside ``[reference]
     <dof>_first_period``, ``<dof>_first_damping_ratio`` and ``<dof>_first_trough`` — only
-    when the reference has them."""
+    when the reference has them — and, when ``potential``, Cummins' model reduced the same
+    way (:func:`potential_first_cycles`)."""
     keys = [f"{dof}_first_{k}" for k in ("period", "damping_ratio", "trough")]
     period, zeta, trough = (reference_entry(reference, k) for k in keys)
     if period is None and zeta is None:
         return []
     label, (scale, unit) = f"{dof}, first 3 cycles", file_unit(dof)
     rows = []
+    if potential:
+        try:
+            r = potential_first_cycles(case, dof)
+        except (ImportError, InputError, ValueError, NotImplementedError, RuntimeError) as err:
+            notes.append(f"potential flow, {label}: not computed ({err})")
+        else:
+            rows.append(_row(case.name, label, "potential flow (Cummins, exact restoring)",
+                             r.first_period, zeta=r.damping_ratio,
+                             note=f"first trough {r.first_trough * scale:.4g} {unit}; "
+                                  "decay-model --model cummins --nonlinear-restoring"))
     for run in analyses:
         try:
             r = first_cycles(run.time, run.value, run.result)
@@ -358,7 +385,8 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
             rows.append(ref_row)
         _relative_differences(rows)
         comparison.rows += rows
-        comparison.rows += _first_cycle_rows(case, dof, analyses, reference, study)
+        comparison.rows += _first_cycle_rows(case, dof, analyses, reference, study,
+                                             potential is not None, comparison.notes)
     return comparison
 
 
