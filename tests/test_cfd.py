@@ -23,6 +23,7 @@ from floatfoam.hydrostatics.theory import theory_summary
 from floatfoam.layout import step_done
 from floatfoam.meshing.levels import tank
 from floatfoam.motion import dof_series, read_motion
+from floatfoam.potential.models import decay_series
 
 pytestmark = pytest.mark.openfoam
 
@@ -49,6 +50,13 @@ def test_cylinder_heave_coarse_decays_with_added_mass(tmp_path):
     # flow adds ~0.5 of the displaced mass, i.e. ~+20 %); the probes measured 0.61-0.62 s.
     assert decay["period_mean"] > theory["memoir"]["heave_period"] > 0.49
     assert decay["period_mean"] > theory["heave_period"] * 1.1
+    # and by as much as potential flow says: within 3 % of Cummins' model with the exact
+    # restoring force (the release is 33 % of the draft), reduced the same way (0.6224 s on
+    # this 1.6 s record) — issue 12's criterion for heave; the coarse whole record measured
+    # 0.6124 s (−1.3 % from Cummins' 0.6205 s there), its grid study U_num 2.6 % (README)
+    series = decay_series(case, "cummins", nonlinear_restoring=True, duration=1.6)
+    cummins = analyse_decay(series["time"], series["z"]).summary()["period_mean"]
+    assert decay["period_mean"] == pytest.approx(cummins, rel=0.03)
     # The amplitude decays every half cycle (radiated waves + viscosity; no energy source).
     z_eq = result.info["z_G_equilibrium"]
     amplitudes = swings(t, z, z_eq)
