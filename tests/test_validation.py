@@ -18,7 +18,13 @@ from floatfoam.analysis.compare import compare_case, reference_entry, reference_
 from floatfoam.analysis.extrema import crossing_reduction
 from floatfoam.analysis.plots import free_decay_curve
 from floatfoam.analysis.report import Sources, _overlay, build_report
-from floatfoam.analysis.validation import plan, validate_case, write_study
+from floatfoam.analysis.validation import (
+    _convergence,
+    numerical_uncertainty,
+    plan,
+    validate_case,
+    write_study,
+)
 from floatfoam.case import load_case
 from floatfoam.errors import InputError
 from floatfoam.foam.driver import prepare, settings_digest, smaller_steps
@@ -61,6 +67,24 @@ def test_a_power_law_is_extrapolated_exactly():
     assert result.order == pytest.approx(1.7, rel=1e-9)
     assert result.extrapolated == pytest.approx(0.6, rel=1e-12)
     assert result.extrapolated_coarse == pytest.approx(0.6, rel=1e-12)
+
+
+def test_an_implausible_order_is_flagged_and_bounded_at_the_formal_one():
+    """Three levels whose medium and fine agree by chance (p ≈ 13 at r = √2) give a tiny
+    Celik GCI; U_num takes instead the fine pair as a two-grid study at the schemes' second
+    order with F_s = 3: 3 × 1e-4 / (2 − 1), by hand."""
+    r = math.sqrt(2.0)
+    grid = gci.three_grids(1.0, 1.0001, 1.01, r, r)
+    assert grid.order > 10 and grid.gci_fine < 2e-6
+    time = gci.two_level(1.0, 1.001, 2.0, 1.0)
+    assert numerical_uncertainty(grid, time) == pytest.approx(math.hypot(3e-4, time.gci_coarse))
+    assert "beyond twice the schemes' order 2" in _convergence(grid.as_dict())
+    assert "0.03 %" in _convergence(grid.as_dict())
+    plausible = gci.three_grids(1.0, 1.01, 1.03, r, r)  # p = 2: Celik's GCI stands
+    assert plausible.order == pytest.approx(2.0)
+    assert numerical_uncertainty(plausible, time) == pytest.approx(
+        math.hypot(plausible.gci_fine, time.gci_coarse))
+    assert "beyond" not in _convergence(plausible.as_dict())
 
 
 @pytest.mark.parametrize("values, kind", [

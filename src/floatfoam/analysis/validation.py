@@ -27,7 +27,9 @@ beside the case's ``[reference]`` measurement of it where there is one) it gives
 * the numerical uncertainty of the fine level's solution, U_num = √(GCI_levels² + GCI_time²)
   (taken as independent, the root-sum-square of ITTC 7.5-03-01-01 (2017), the procedure for
   uncertainty analysis in CFD verification and validation; conservative, since the levels
-  already hold part of the time error);
+  already hold part of the time error); where the levels' observed order is beyond twice the
+  schemes' second order, their GCI is flagged and U_num takes the fine pair's two-grid GCI at
+  second order with F_s = 3 if larger (:func:`levels_gci`);
 * with ``--morphing F``, the morphing study: the coarse level once more with its six-DoF
   morphing distances times F (:func:`floatfoam.foam.driver.scaled_morphing`), and the change
   of each quantity. The distances are the same on every level, so neither GCI sees them; on
@@ -84,6 +86,12 @@ def plan(time_level: str = TIME_STEP_LEVEL,
 
 TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
 #: key, label, unit of each quantity of the study
+#: the schemes' formal order in space (second: cases/_common/system/fvSchemes; the time error
+#: has its own GCI, below). An observed order beyond twice it says the three levels'
+#: differences are not the power law the extrapolation assumes (two of them agree by chance,
+#: or the error changes sign): such a quantity's GCI is flagged, and U_num takes instead the
+#: fine pair's as a two-grid study with this order and F_s = 3 (Roache), if that is larger
+FORMAL_ORDER = 2.0
 QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
               ("first_period", "first period (first trough's crossings)", "s"),
               ("damping_ratio", "damping ratio ζ", ""),
@@ -206,9 +214,20 @@ def numerical_uncertainty(grid, time) -> float | None:
     """U_num = √(GCI_grid² + GCI_time²) of the fine level's solution, a fraction; None when
     unknown. GCI_time is the halved level's own step (the coarser of the time pair, Roache's
     GCI_coarse), taken for the fine level's (module docstring)."""
-    g = grid.gci_fine if isinstance(grid, gci.GridConvergence) else None
+    g = levels_gci(grid.as_dict()) if isinstance(grid, gci.GridConvergence) else None
     t = time.gci_coarse if isinstance(time, gci.TwoLevel) else None
     return None if g is None or t is None else math.hypot(g, t)
+
+
+def levels_gci(grid: dict) -> float | None:
+    """The levels' GCI_fine that U_num takes: Celik et al.'s, or, when the observed order is
+    beyond twice :data:`FORMAL_ORDER`, the larger of it and the fine pair's two-grid GCI at
+    that order (:func:`floatfoam.analysis.gci.formal_order_gci`)."""
+    g, order = grid.get("gci_fine"), grid.get("order")
+    if g is None or order is None or order <= 2 * FORMAL_ORDER:
+        return g
+    return max(g, gci.formal_order_gci(grid["relative_error"], grid["ratios"][0],
+                                       FORMAL_ORDER))
 
 
 def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_LEVEL,
@@ -287,7 +306,9 @@ def method(time_level: str = TIME_STEP_LEVEL, morphing: float | None = None) -> 
             f"space-time GCI. Time alone: the {time_level} level against its time steps "
             f"halved, Roache's two-grid GCI of the {time_level} level's own step (F_s = 3, "
             f"first order){bound}. U_num = √(GCI_levels² + GCI_time²), the band around the "
-            "fine level's value." + ("" if morphing is None else
+            "fine level's value; where the levels' order p is beyond twice the schemes' "
+            f"{FORMAL_ORDER:g}, GCI_levels is the fine pair's at order {FORMAL_ORDER:g} with "
+            "F_s = 3 (Roache) if larger." + ("" if morphing is None else
             f" Morphing: the {MORPHING_LEVEL} level with the six-DoF morphing distances × "
             f"{morphing:g}, which are the same on every level so that neither GCI sees them; "
             "a change larger than the levels' GCI says the morphing, not the mesh, limits "
@@ -307,7 +328,7 @@ def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]
                 rows.append([label, OLDER_STUDY, *("—",) * (len(GCI_HEADER) - 2)])
                 continue
             g, t = q["grid"], q["time"]
-            rows.append([label, g.get("kind", g.get("note", "")), _num(g.get("order"), ".3g"),
+            rows.append([label, _convergence(g), _num(g.get("order"), ".3g"),
                          _num(g.get("extrapolated")), _pct(g.get("relative_error")),
                          _pct(g.get("gci_fine")),
                          _pct(t.get("relative_error")) if "values" in t else t.get("note", ""),
@@ -315,6 +336,20 @@ def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]
                          _measured_cell(entry.get("reference", {}).get(key))])
         out.append((dof, runs, rows))
     return out
+
+
+def _convergence(grid: dict, brief: bool = False) -> str:
+    """How the levels converge; flagged when the observed order is beyond twice the formal
+    one (:data:`FORMAL_ORDER`), ``brief``ly for the report's summary line."""
+    kind = grid.get("kind", grid.get("note", ""))
+    order = grid.get("order")
+    if order is not None and order > 2 * FORMAL_ORDER and brief:
+        return f"{kind} (p = {order:.3g}: flagged)"
+    if order is not None and order > 2 * FORMAL_ORDER:
+        kind += (f" — p = {order:.3g}, beyond twice the schemes' order {FORMAL_ORDER:g}: "
+                 "its GCI is no bound; U_num takes the fine pair's at that order, F_s = 3, "
+                 f"{_pct(levels_gci(grid))}")
+    return kind
 
 
 MORPHING_HEADER = ("quantity", MORPHING_LEVEL, "distances × F", "change", "GCI_fine (levels)")
@@ -353,7 +388,7 @@ def summary_row(study: dict, dof: str) -> list[str]:
     period, zeta = entry["quantities"]["period"], entry["quantities"]["damping_ratio"]
     fine = entry["runs"].get("fine", {})
     return [study["case"], dof, str(len(study["runs"])), _num(fine.get("period")),
-            period["grid"].get("kind", period["grid"].get("note", "")),
+            _convergence(period["grid"], brief=True),
             _pct(period["grid"].get("gci_fine")), study.get("time_step_level", "fine"),
             _pct(period["time"].get("gci_coarse")),
             _pct(period["uncertainty"]), _num(fine.get("damping_ratio"), ".3g"),
