@@ -186,6 +186,32 @@ def test_sphere_heave_from_three_heights(tmp_path, name, release, tolerance):
                                                  abs=0.01 * theory.draft)
 
 
+def test_lab_sphere_first_cycle_against_the_basin(tmp_path):
+    """Kramer et al.'s (2021) sphere dropped from 0.1 D: the first period and first trough of
+    the coarse wedge, reduced as the basin reduces its records about the level the body
+    settles at (analysis.compare.settled_level: known here, so the record's first 1.1 s is
+    enough), against the four drops' reference.
+
+    The case's grid study (`make validate CASE=lab_sphere`, its README) puts the fine level
+    +0.03 % and +0.19 % from them, the coarse +0.23 % and −0.3 %. First period within 0.5 %:
+    coarse to fine 0.2 %, the fine level's U_num 0.12 %, the basin's ± 0.07 %, rounded up.
+    Trough within 1.5 %: the levels move it by 0.5 % from coarse to fine, the halved time step
+    by 0.6 %, the basin's ± 0.4 %."""
+    from floatfoam import layout
+    from floatfoam.analysis.compare import reference_entry, settled_level
+    from floatfoam.analysis.extrema import crossing_reduction
+
+    case, theory, motion, info = cfd("lab_sphere", tmp_path, ["run.end_time=1.1"])
+    assert info["mesh"] == "wedge"
+    level = settled_level(case, "heave", layout.run_dir(case.name, "coarse", tmp_path), theory)
+    assert level is not None
+    first = crossing_reduction(motion["time"], motion["z"], level=level, n_extrema=2)
+    period = reference_entry(case.reference, "heave_first_period")[0]
+    trough = reference_entry(case.reference, "heave_first_trough")[0]
+    assert first.first_period == pytest.approx(period, rel=0.005)
+    assert first.first_trough == pytest.approx(trough, rel=0.015)
+
+
 def test_capsizing_ellipse_turns_over_to_its_stable_attitude(tmp_path):
     """The ellipse on its major axis with G too high (GM = −0.0154 m): Le Barbier's verdict
     "capsizes" seen in the fluid. Released at 2°, it leaves the upright attitude, turns past the

@@ -14,7 +14,12 @@ import pytest
 
 from floatfoam import layout
 from floatfoam.analysis import gci
-from floatfoam.analysis.compare import compare_case, reference_entry, reference_record
+from floatfoam.analysis.compare import (
+    compare_case,
+    reference_entry,
+    reference_record,
+    settled_level,
+)
 from floatfoam.analysis.extrema import crossing_reduction
 from floatfoam.analysis.plots import free_decay_curve
 from floatfoam.analysis.report import Sources, _overlay, build_report
@@ -291,6 +296,29 @@ def test_first_cycles_are_set_beside_the_measured_ones(tmp_path):
     assert first[0]["period_rel_diff"] == pytest.approx(0.0, abs=1e-4)
     assert first[0]["damping_rel_diff"] == pytest.approx(0.0, abs=2e-3)
     assert "first trough" in first[1]["note"] and "Kramer et al. 2021" in first[1]["note"]
+
+
+def test_the_level_a_heave_record_settles_at(tmp_path):
+    """settled_level by hand for the laboratory sphere in its wedge: the theory's equilibrium,
+    0.19 mm lower for a body patch 0.19 % short of volume, 0.018 mm higher for the water the
+    body displaces more of at equilibrium (A_wp × 29.16 mm over π × 6² m² less A_wp). A 2D
+    section's slab (rise 1–3 % of the release) and the angles have none: the fit's level
+    stays."""
+    case = load_case("lab_sphere")
+    theory = theory_summary(case)
+    run = tmp_path / "coarse"
+    (run / layout.MARKERS).mkdir(parents=True)
+    info = {"mesh": "wedge", "z_G_equilibrium": -0.0348, "immersed_error": -0.0019}
+    (run / layout.MARKERS / "info.json").write_text(json.dumps(info))
+    area = math.pi * 0.15**2
+    volume = 7.056 / 998.2
+    expected = -0.0348 - 0.0019 * volume / area + area * 0.02916 / (math.pi * 36 - area)
+    assert theory.waterplane_area == pytest.approx(area, rel=1e-3)
+    assert settled_level(case, "heave", run, theory) == pytest.approx(expected, rel=1e-4)
+    assert settled_level(case, "roll", run, theory) is None
+    (run / layout.MARKERS / "info.json").write_text(json.dumps(info | {"mesh": "2d"}))
+    assert settled_level(case, "heave", run, theory) is None
+    assert settled_level(case, "heave", tmp_path / "none", theory) is None
 
 
 def test_potential_flow_first_cycles_beside_the_basins(tmp_path):

@@ -50,9 +50,16 @@ from pathlib import Path
 
 from floatfoam import layout
 from floatfoam.analysis import gci
-from floatfoam.analysis.compare import analyse_run, excited_dofs, first_cycles, reference_entry
+from floatfoam.analysis.compare import (
+    analyse_run,
+    excited_dofs,
+    first_cycles,
+    reference_entry,
+    settled_level,
+)
 from floatfoam.analysis.uncertainty import STUDY_FILE
 from floatfoam.errors import InputError
+from floatfoam.hydrostatics.theory import theory_summary
 from floatfoam.jsonfile import dump_json
 
 TIME_STEP_DIVISOR = 2
@@ -141,7 +148,7 @@ def finished_morphing(case_name: str, build: Path) -> float | None:
 
 
 def _run_values(name: str, divisor: int, run: Path, dof: str,
-                morphing: float = 1.0) -> RunValues:
+                morphing: float = 1.0, settled: float | None = None) -> RunValues:
     info_file = run / layout.MARKERS / "info.json"
     info = json.loads(info_file.read_text()) if info_file.is_file() else {}
     dimension = 3 if str(info.get("mesh", "")).startswith("3d") else 2
@@ -154,7 +161,7 @@ def _run_values(name: str, divisor: int, run: Path, dof: str,
         return out
     s = result.summary()
     try:
-        first = first_cycles(time, value, result)
+        first = first_cycles(time, value, result, settled)
     except ValueError:  # fewer than six extrema
         first = None
     out.values = {"period": s["period_mean"], "damping_ratio": s["damping_ratio"],
@@ -242,11 +249,13 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
         layout.run_dir(case.name, level, build, time_step_divisor=TIME_STEP_DIVISOR))]
     hint = (f" ({layout.run_name(other[0], TIME_STEP_DIVISOR)} is: --time-level {other[0]})"
             if other else "")
+    theory = theory_summary(case)
     out = {"case": case.name, "runs": [name for name, _, _, _ in found], "dofs": {},
            "time_order": TIME_ORDER, "time_step_divisor": TIME_STEP_DIVISOR,
            "time_step_level": time_level, "morphing": morphing}
     for dof in excited_dofs(case, {}):
-        runs = {name: _run_values(name, k, run, dof, f) for name, k, f, run in found}
+        runs = {name: _run_values(name, k, run, dof, f, settled_level(case, dof, run, theory))
+                for name, k, f, run in found}
         entry = {"runs": {name: {"cells": r.cells, "dimension": r.dimension,
                                  "divisor": r.divisor, "morphing": r.morphing, **r.values,
                                  "note": r.note}
