@@ -306,7 +306,7 @@ def test_the_level_a_heave_record_settles_at(tmp_path):
     stays."""
     case = load_case("lab_sphere")
     theory = theory_summary(case)
-    run = tmp_path / "coarse"
+    run = layout.run_dir(case.name, "coarse", tmp_path)
     (run / layout.MARKERS).mkdir(parents=True)
     info = {"mesh": "wedge", "z_G_equilibrium": -0.0348, "immersed_error": -0.0019}
     (run / layout.MARKERS / "info.json").write_text(json.dumps(info))
@@ -316,6 +316,23 @@ def test_the_level_a_heave_record_settles_at(tmp_path):
     assert theory.waterplane_area == pytest.approx(area, rel=1e-3)
     assert settled_level(case, "heave", run, theory) == pytest.approx(expected, rel=1e-4)
     assert settled_level(case, "roll", run, theory) is None
+    # the report and the study reduce a run's first cycles about it: a damped cosine about
+    # the theory's level, so the fit's level is 0.17 mm above the settled one here
+    t = np.arange(0.0, 4.8, 0.002)
+    z = -0.0348 + 0.029 * np.exp(-0.75 * t) * np.cos(2 * math.pi / 0.787 * t)
+    rows = "\n".join(f"{a:.6f},0,0,{b:.9g},0,0,0,0,0,0,0,0,0" for a, b in zip(t, z, strict=True))
+    (run / "motion.csv").write_text("time,x,y,z,roll,pitch,yaw,u,v,w,p,q,r\n" + rows + "\n")
+    layout.mark_done(run, layout.FINISHED)
+    about = crossing_reduction(t, z, level=expected)
+    fit = crossing_reduction(t, z, level=-0.0348)  # the cosine's own level, which a fit finds
+    assert fit.first_period == pytest.approx(0.787, rel=1e-4)
+    assert about.first_period < 0.995 * fit.first_period  # 0.17 mm lower: 0.5 % shorter
+    out = compare_case(case, build_dir=tmp_path, theory=theory, potential=None)
+    cfd = next(r for r in out.rows if r["dof"] == "heave, first 3 cycles"
+               and r["source"] == "CFD coarse")
+    assert cfd["period"] == pytest.approx(about.first_period, rel=1e-9)
+    study = validate_case(case, tmp_path)["dofs"]["heave"]["runs"]["coarse"]
+    assert study["first_period"] == pytest.approx(about.first_period, rel=1e-9)
     (run / layout.MARKERS / "info.json").write_text(json.dumps(info | {"mesh": "2d"}))
     assert settled_level(case, "heave", run, theory) is None
     assert settled_level(case, "heave", tmp_path / "none", theory) is None

@@ -245,7 +245,7 @@ def _cfd_rows(case, dof, runs, theory, options) -> tuple[list[dict], list[CfdAna
             rows.append(_row(case.name, dof, source, note=f"analysis failed: {err}"))
             continue
         analyses.append(CfdAnalysis(level, dof, time, value, result,
-                                    settled_level(case, dof, path, theory)))
+                                    settled_level(case, dof, path.parent, theory)))
         s = result.summary()
         note = f"T_n {s['natural_period']:.4g} s; {s['n_cycles']:.2g} cycles"
         if eq_theory is not None:
