@@ -17,9 +17,9 @@ trim → heave, roll, pitch) or lists a reference for:
 * **reference**: the measured value of the case's ``[reference]`` table (value ± uncertainty);
 * **<dof>, first 3 cycles**: when the reference gives the first cycles of a measured record
   (``<dof>_first_period``, ``_first_damping_ratio``, ``_first_trough``), each CFD record
-  and Cummins' potential-flow model with the exact restoring force
-  (:func:`potential_first_cycles`, with the potential flow) reduced the same way
-  (:func:`floatfoam.analysis.extrema.crossing_reduction`).
+  reduced the same way (:func:`floatfoam.analysis.extrema.crossing_reduction`), and, unless
+  potential flow is left out, Cummins' model with the exact restoring force
+  (:func:`potential_first_cycles`) too.
 
 Relative differences are taken against the reference where the case has one, else against the
 exact linear theory (periods only: the theory has no damping). A CFD record that cannot be
@@ -177,53 +177,59 @@ SETTLED_RISE = 1e-3
 
 def settled_level(case, dof: str, run: Path, theory: TheorySummary) -> float | None:
     """Where a run's body settles in ``dof``, in code units, when the physics gives it: in
-    heave, the theory's equilibrium of G (the run's info.json), lowered by the volume the
-    discrete body lacks (its immersed-volume error × V / A_wp) and raised with the tank's
-    water, which the body displaces more of at equilibrium than at its release
-    (A_wp × release / the tank's free surface).
+    heave, the theory's equilibrium of G (the run's info.json), moved by the discrete body's
+    own equilibrium shift at the run's mesh level (it displaces a little less than the exact
+    body: :func:`floatfoam.meshing.volume_report.discrete_volume_report`, the wedge's revolved
+    meridian for a body of revolution) and raised with the tank's water, which the body
+    displaces more of at equilibrium than at its release (A_wp × release / the tank's free
+    surface).
 
-    None — the decay fit's level is used — for the angles, without the run's info, and where
-    that rise exceeds 0.1 % of the release: in a 2D slab (1–3 % of it) the displaced water
-    spreads along the tank for seconds while the first cycles pass, so the level they swing
-    about is not yet the final one (flume_section_heave: the theory's level with the rise,
-    the fit's and the tail's differ by up to 0.8 mm). In a wide tank (the laboratory sphere's
-    wedge: 0.06 %) it is exact to ~0.05 mm: there the first period reduced as a basin reduces
-    its records moves by 0.26 % per 0.1 mm of the level, the decay fit's mean level lies
-    0.13–0.17 mm below this one, and fits of the record after its first 1.5 s agree with it
-    within 0.06 mm (cases/lab_sphere/README.md)."""
+    None — the decay fit's level is used — for the angles, without the run's info or level,
+    and where that rise exceeds :data:`SETTLED_RISE` of the release: in a 2D slab (1–3 % of
+    it) the displaced water spreads along the tank for seconds while the first cycles pass, so
+    the level they swing about is not yet the final one (flume_section_heave: the theory's level
+    with the rise, the fit's and the tail's differ by up to 0.8 mm). In a wide tank (the
+    laboratory sphere's wedge: 0.06 %) it is exact to a few hundredths of a mm: there the first
+    period reduced as a basin reduces its records moves by 0.26 % per 0.1 mm of the level, the
+    decay fit's mean level lies 0.15–0.16 mm below this one, and fits of the record after its
+    first 1.5 s agree with it within 0.04 mm (cases/lab_sphere/README.md)."""
     if dof != "heave":
         return None
     try:
         info = json.loads((Path(run) / layout.MARKERS / "info.json").read_text())
     except (OSError, ValueError):
         return None
-    if info.get("z_G_equilibrium") is None:
+    level = Path(run).name.split("-")[0]
+    if info.get("z_G_equilibrium") is None or level not in layout.LEVELS:
         return None
     from floatfoam.meshing.levels import tank
+    from floatfoam.meshing.volume_report import discrete_volume_report
 
-    box, area = tank(case), theory.waterplane_area
+    box, area, release = tank(case), theory.waterplane_area, case.release["heave"]
     free = {"wedge": math.pi * box.half_length**2,
             "3d": 4 * box.half_length * box.half_width,
             "3d-half": 4 * box.half_length * box.half_width}.get(
         info.get("mesh"), 2 * box.half_length * (case.body.length or 1.0)) - area
-    missing = float(info.get("immersed_error") or 0.0) * theory.displaced_volume / area
-    rise = area * case.release["heave"] / free
-    if abs(rise) > SETTLED_RISE * abs(case.release["heave"]):
+    rise = area * release / free
+    if abs(rise) > SETTLED_RISE * abs(release):
         return None
-    return float(info["z_G_equilibrium"]) + missing + rise
+    report = discrete_volume_report(case, level)
+    if info.get("mesh") == "wedge":
+        report = report["meridian"]
+    return float(info["z_G_equilibrium"]) + report["equilibrium_shift"] + rise
 
 
-def potential_first_cycles(case, dof: str):
+def potential_first_cycles(case, dof: str, theory: TheorySummary):
     """Cummins' potential-flow model with the body's exact restoring force (`floatfoam
     decay-model CASE --model cummins --nonlinear-restoring`), its record of DoF ``dof`` reduced
-    as a measured record's first cycles (:func:`crossing_reduction`, about its settled level:
-    the model's record runs until it has settled)."""
+    as a measured record's first cycles (:func:`crossing_reduction`) about the theory's
+    equilibrium, where the model settles."""
     from floatfoam.potential.models import decay_series
     from floatfoam.potential.radiation import radiation_coefficients
 
     series = decay_series(case, "cummins", nonlinear_restoring=True,
                           coefficients=radiation_coefficients(case))
-    return crossing_reduction(*dof_series(series, dof))
+    return crossing_reduction(*dof_series(series, dof), level=theory_equilibrium(theory, dof))
 
 
 def analyse_run(path: Path, dof: str, **options) -> tuple[object, object, DecayResult]:
@@ -328,23 +334,23 @@ def _band_row(case, label, dof, study, keys) -> dict | None:
                 "; ".join(filter(None, ("grid and time-step study (floatfoam validate)", ext))))
 
 
-def _first_cycle_rows(case, dof, analyses, reference, study, potential: bool,
+def _first_cycle_rows(case, dof, analyses, reference, study, model: Callable | None,
                       notes: list[str]) -> list[dict]:
     """The first cycles of each CFD record reduced as the case's reference reduces its
     measurements (:func:`first_cycles`: the first period from the first trough's zero
     crossings, ζ over the first six extrema, the first trough), beside ``[reference]
     <dof>_first_period``, ``<dof>_first_damping_ratio`` and ``<dof>_first_trough`` — only
-    when the reference has them — and, when ``potential``, Cummins' model reduced the same
-    way (:func:`potential_first_cycles`)."""
+    when the reference has them — and ``model`` (case, dof → a :func:`crossing_reduction`
+    result: :func:`potential_first_cycles`; None leaves it out) beside them."""
     keys = [f"{dof}_first_{k}" for k in ("period", "damping_ratio", "trough")]
     period, zeta, trough = (reference_entry(reference, k) for k in keys)
     if period is None and zeta is None:
         return []
     label, (scale, unit) = f"{dof}, first 3 cycles", file_unit(dof)
     rows = []
-    if potential:
+    if model is not None:
         try:
-            r = potential_first_cycles(case, dof)
+            r = model(case, dof)
         except (ImportError, InputError, ValueError, NotImplementedError, RuntimeError) as err:
             notes.append(f"potential flow, {label}: not computed ({err})")
         else:
@@ -404,13 +410,16 @@ def _relative_differences(rows: list[dict]) -> None:
 
 def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = None,
                  potential: Callable | None = potential_flow,
+                 potential_cycles: Callable | None = potential_first_cycles,
                  analysis_options: dict | None = None) -> Comparison:
     """The comparison table of one case (see the module docstring for the rows).
 
     ``theory`` is :func:`~floatfoam.hydrostatics.theory.theory_summary` of the case
     (computed when None); ``potential`` gives the potential-flow summary of a case (default
-    :func:`potential_flow`; None leaves potential flow out); ``analysis_options`` go to
-    :func:`analyse_decay` (e.g. ``{"drift": True}``).
+    :func:`potential_flow`; None leaves potential flow out, and its first cycles with it);
+    ``potential_cycles`` (case, dof, theory) the potential flow's first cycles beside a
+    reference's (default :func:`potential_first_cycles`; None leaves them out);
+    ``analysis_options`` go to :func:`analyse_decay` (e.g. ``{"drift": True}``).
     """
     if theory is None:
         from floatfoam.hydrostatics.theory import theory_summary
@@ -418,6 +427,7 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
         theory = theory_summary(case)
     reference = case.reference or {}
     comparison = Comparison(case.name)
+    cycles_wanted = potential is not None and potential_cycles is not None
     potential = _potential(case, potential, comparison.notes)
     runs = cfd_runs(case.name, build_dir)
     if not runs:
@@ -435,8 +445,9 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
             rows.append(ref_row)
         _relative_differences(rows)
         comparison.rows += rows
-        comparison.rows += _first_cycle_rows(case, dof, analyses, reference, study,
-                                             potential is not None, comparison.notes)
+        cycles = (lambda c, d: potential_cycles(c, d, theory)) if cycles_wanted else None
+        comparison.rows += _first_cycle_rows(case, dof, analyses, reference, study, cycles,
+                                             comparison.notes)
     return comparison
 
 

@@ -162,12 +162,3 @@ def two_level(fine: float, coarse: float, ratio: float, order: float) -> TwoLeve
     f = ratio**order
     return TwoLevel((float(fine), float(coarse)), ratio, order, rel,
                     SAFETY_TWO_GRIDS * rel / (f - 1), SAFETY_TWO_GRIDS * rel * f / (f - 1))
-
-
-def formal_order_gci(relative_error: float, ratio: float, order: float) -> float:
-    """Roache's (1998) GCI of the finer of two solutions with an assumed (formal) order and
-    F_s = 3, from their relative difference: for three levels whose observed order is not to be
-    trusted, the fine pair read as a two-grid study."""
-    if ratio <= 1 or order <= 0:
-        raise ValueError(f"ratio = {ratio}, order = {order}: valid are r > 1, p > 0")
-    return SAFETY_TWO_GRIDS * relative_error / (ratio**order - 1)

@@ -29,7 +29,7 @@ beside the case's ``[reference]`` measurement of it where there is one) it gives
   uncertainty analysis in CFD verification and validation; conservative, since the levels
   already hold part of the time error); where the levels' observed order is beyond twice the
   schemes' second order, their GCI is flagged and U_num takes the fine pair's two-grid GCI at
-  second order with F_s = 3 if larger (:func:`levels_gci`);
+  second order with F_s = 3 instead (:func:`levels_gci`);
 * with ``--morphing F``, the morphing study: the coarse level once more with its six-DoF
   morphing distances times F (:func:`floatfoam.foam.driver.scaled_morphing`), and the change
   of each quantity. The distances are the same on every level, so neither GCI sees them; on
@@ -92,13 +92,13 @@ def plan(time_level: str = TIME_STEP_LEVEL,
 
 
 TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
-#: key, label, unit of each quantity of the study
 #: the schemes' formal order in space (second: cases/_common/system/fvSchemes; the time error
 #: has its own GCI, below). An observed order beyond twice it says the three levels'
 #: differences are not the power law the extrapolation assumes (two of them agree by chance,
 #: or the error changes sign): such a quantity's GCI is flagged, and U_num takes instead the
-#: fine pair's as a two-grid study with this order and F_s = 3 (Roache), if that is larger
+#: fine pair's as a two-grid study with this order and F_s = 3 (Roache)
 FORMAL_ORDER = 2.0
+#: key, label, unit of each quantity of the study
 QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
               ("first_period", "first period (first trough's crossings)", "s"),
               ("damping_ratio", "damping ratio ζ", ""),
@@ -226,15 +226,21 @@ def numerical_uncertainty(grid, time) -> float | None:
     return None if g is None or t is None else math.hypot(g, t)
 
 
+def implausible_order(order: float | None) -> bool:
+    """An observed order beyond twice the schemes' formal one (:data:`FORMAL_ORDER`)."""
+    return order is not None and order > 2 * FORMAL_ORDER
+
+
 def levels_gci(grid: dict) -> float | None:
-    """The levels' GCI_fine that U_num takes: Celik et al.'s, or, when the observed order is
-    beyond twice :data:`FORMAL_ORDER`, the larger of it and the fine pair's two-grid GCI at
-    that order (:func:`floatfoam.analysis.gci.formal_order_gci`)."""
-    g, order = grid.get("gci_fine"), grid.get("order")
-    if g is None or order is None or order <= 2 * FORMAL_ORDER:
+    """The levels' GCI_fine that U_num takes: Celik et al.'s, or, for an implausible observed
+    order, the fine pair's as a two-grid study at :data:`FORMAL_ORDER` with F_s = 3
+    (:func:`floatfoam.analysis.gci.two_level`; always the larger there, since 1.25/(r^p − 1)
+    < 3/(r² − 1) for p > 4)."""
+    g = grid.get("gci_fine")
+    if g is None or not implausible_order(grid.get("order")):
         return g
-    return max(g, gci.formal_order_gci(grid["relative_error"], grid["ratios"][0],
-                                       FORMAL_ORDER))
+    fine, medium, _ = grid["values"]
+    return gci.two_level(fine, medium, grid["ratios"][0], FORMAL_ORDER).gci_fine
 
 
 def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_LEVEL,
@@ -317,7 +323,7 @@ def method(time_level: str = TIME_STEP_LEVEL, morphing: float | None = None) -> 
             f"first order){bound}. U_num = √(GCI_levels² + GCI_time²), the band around the "
             "fine level's value; where the levels' order p is beyond twice the schemes' "
             f"{FORMAL_ORDER:g}, GCI_levels is the fine pair's at order {FORMAL_ORDER:g} with "
-            "F_s = 3 (Roache) if larger." + ("" if morphing is None else
+            "F_s = 3 (Roache)." + ("" if morphing is None else
             f" Morphing: the {MORPHING_LEVEL} level with the six-DoF morphing distances × "
             f"{morphing:g}, which are the same on every level so that neither GCI sees them; "
             "a change larger than the levels' GCI says the morphing, not the mesh, limits "
@@ -352,9 +358,9 @@ def _convergence(grid: dict, brief: bool = False) -> str:
     one (:data:`FORMAL_ORDER`), ``brief``ly for the report's summary line."""
     kind = grid.get("kind", grid.get("note", ""))
     order = grid.get("order")
-    if order is not None and order > 2 * FORMAL_ORDER and brief:
+    if implausible_order(order) and brief:
         return f"{kind} (p = {order:.3g}: flagged)"
-    if order is not None and order > 2 * FORMAL_ORDER:
+    if implausible_order(order):
         kind += (f" — p = {order:.3g}, beyond twice the schemes' order {FORMAL_ORDER:g}: "
                  "its GCI is no bound; U_num takes the fine pair's at that order, F_s = 3, "
                  f"{_pct(levels_gci(grid))}")
