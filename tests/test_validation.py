@@ -34,7 +34,7 @@ from floatfoam.case import load_case
 from floatfoam.errors import InputError
 from floatfoam.foam.driver import prepare, settings_digest, smaller_steps
 from floatfoam.hydrostatics.theory import theory_summary
-from floatfoam.motion import file_unit
+from floatfoam.motion import file_unit, write_motion
 
 # Celik et al. (2008), J. Fluids Eng. 130:078001, Table 1: three columns, N1, N2, N3 cells of
 # a 2D grid (r from the counts, their eq. 1), φ1..φ3, and what they print: p (2 decimals),
@@ -112,6 +112,12 @@ def test_two_grid_gci_of_the_time_step():
     assert result.gci_coarse == pytest.approx(6 * 0.002 / 0.612)
 
 
+def _finished_heave_run(run, t, z):
+    """A heave record (code units) as the run's motion.csv, the run marked finished."""
+    write_motion(run / "motion.csv", t, z=z)
+    layout.mark_done(run, layout.FINISHED)
+
+
 def _synthetic_run(build, name, cells, period, zeta, dt):
     """A run folder holding a synthetic heave record (a damped cosine), marked finished: for
     the analysis of the study only, nothing here came from a solver."""
@@ -120,9 +126,7 @@ def _synthetic_run(build, name, cells, period, zeta, dt):
     (run / layout.MARKERS / "info.json").write_text(json.dumps({"cells": cells, "mesh": "2d"}))
     t = np.arange(0.0, 3.2, dt)
     z = free_decay_curve(t, 0.0, 0.0254, period, zeta)
-    rows = "\n".join(f"{a:.6f},0,0,{b:.9g},0,0,0,0,0,0,0,0,0" for a, b in zip(t, z, strict=True))
-    (run / "motion.csv").write_text("time,x,y,z,roll,pitch,yaw,u,v,w,p,q,r\n" + rows + "\n")
-    layout.mark_done(run, layout.FINISHED)
+    _finished_heave_run(run, t, z)
 
 
 @pytest.mark.parametrize("time_level, morphing", [("medium", 1.5), ("fine", None)])
@@ -286,9 +290,7 @@ def test_first_cycles_are_set_beside_the_measured_ones(tmp_path):
     (run / layout.MARKERS).mkdir(parents=True)
     t = np.arange(0.0, 4.8, 0.002)
     z = -0.0348 + 0.029 * np.exp(-sigma * t) * np.cos(omega_d * t)
-    rows = "\n".join(f"{a:.6f},0,0,{b:.9g},0,0,0,0,0,0,0,0,0" for a, b in zip(t, z, strict=True))
-    (run / "motion.csv").write_text("time,x,y,z,roll,pitch,yaw,u,v,w,p,q,r\n" + rows + "\n")
-    layout.mark_done(run, layout.FINISHED)
+    _finished_heave_run(run, t, z)
     out = compare_case(case, build_dir=tmp_path, potential=None)
     first = [r for r in out.rows if r["dof"] == "heave, first 3 cycles"]
     assert [r["source"] for r in first] == ["CFD coarse", "reference"]
@@ -348,9 +350,7 @@ def test_the_level_a_heave_record_settles_at(tmp_path):
     # the theory's level, so the fit's level is 0.15 mm above the settled one here
     t = np.arange(0.0, 4.8, 0.002)
     z = -0.0348 + 0.029 * np.exp(-0.75 * t) * np.cos(2 * math.pi / 0.787 * t)
-    rows = "\n".join(f"{a:.6f},0,0,{b:.9g},0,0,0,0,0,0,0,0,0" for a, b in zip(t, z, strict=True))
-    (run / "motion.csv").write_text("time,x,y,z,roll,pitch,yaw,u,v,w,p,q,r\n" + rows + "\n")
-    layout.mark_done(run, layout.FINISHED)
+    _finished_heave_run(run, t, z)
     about = crossing_reduction(t, z, level=expected)
     fit = crossing_reduction(t, z, level=-0.0348)  # the cosine's own level, which a fit finds
     assert fit.first_period == pytest.approx(0.787, rel=1e-4)
