@@ -507,3 +507,32 @@ def test_a_study_written_before_a_quantity_joined_it_still_reports(tmp_path):
                                          "floatfoam validate --no-run)"] * 2
     assert morphing_rows(old, "heave") == []
     assert "## heave" in study_markdown(old)
+
+
+def test_the_level_a_3d_heave_record_settles_at(tmp_path):
+    """settled_level in a 3D tank (whole, or the half x ≥ 0 with its symmetry plane: the same
+    ratio of the body's waterplane to the water's): the discrete body's shift is that of its
+    surface triangles, not of a wedge's meridian, and the tank's rise is A_wp × release over
+    the whole tank's free surface less A_wp. The ellipsoid of revolution's 4 × 4 m tank
+    (16 m²) rises 0.44 % of a heave release: the water spreads over it while the first cycles
+    pass, so the fit's level stays; a 12 × 12 m tank rises 0.05 % and has a settled level."""
+    from floatfoam.meshing.volume_report import discrete_volume_report
+
+    overrides = ["release.heave=0.01", "release.heel=0.0"]
+    run = layout.run_dir("ellipsoid", "coarse", tmp_path)
+    (run / layout.MARKERS).mkdir(parents=True)
+    for mesh in ("3d", "3d-half"):
+        info = {"mesh": mesh, "z_G_equilibrium": -0.05}
+        (run / layout.MARKERS / "info.json").write_text(json.dumps(info))
+        case = load_case("ellipsoid", overrides)
+        theory = theory_summary(case)
+        assert settled_level(case, "heave", run, theory) is None  # 16 m²: rise 0.44 %
+        case = load_case("ellipsoid", [*overrides, "domain.half_length=6.0",
+                                       "domain.half_width=6.0"])
+        area = theory.waterplane_area
+        assert area == pytest.approx(math.pi * 0.15**2, rel=1e-3)
+        report = discrete_volume_report(case, "coarse")
+        shift = report["equilibrium_shift"]
+        assert shift != pytest.approx(report["meridian"]["equilibrium_shift"], rel=0.05)
+        expected = -0.05 + shift + area * 0.01 / (144.0 - area)
+        assert settled_level(case, "heave", run, theory) == pytest.approx(expected, rel=1e-9)
