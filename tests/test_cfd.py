@@ -62,10 +62,11 @@ def test_cylinder_heave_coarse_decays_with_added_mass(tmp_path):
     amplitudes = swings(t, z, z_eq)
     assert len(amplitudes) >= 4
     assert all(b < a for a, b in zip(amplitudes, amplitudes[1:], strict=False))
-    # It returns to the equilibrium draft: the fitted mean level within 1 mm (4 % of the
-    # 25.4 mm release) of the theory's; the sinking body raises the water of the finite
-    # tank by ~0.3 mm, and the probes saw ±0.25 mm.
-    assert decay["equilibrium"] == pytest.approx(z_eq, abs=1e-3)
+    # It returns to the equilibrium draft: the fitted mean level within 1 % of the 76.2 mm
+    # draft (0.76 mm, issue 12's criterion) of the theory's; measured −0.29 mm on this record
+    # (0.38 %). The sinking body raises the water of the finite tank by ~0.3 mm, and the
+    # probes saw ±0.25 mm.
+    assert decay["equilibrium"] == pytest.approx(z_eq, abs=0.01 * theory["draft"])
 
 
 def test_still_water_stays_at_rest(tmp_path):
