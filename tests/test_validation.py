@@ -20,6 +20,7 @@ from floatfoam.analysis.compare import (
     reference_record,
     settled_level,
 )
+from floatfoam.analysis.decay import analyse_decay
 from floatfoam.analysis.extrema import crossing_reduction
 from floatfoam.analysis.plots import free_decay_curve
 from floatfoam.analysis.report import Sources, _overlay, build_report
@@ -442,6 +443,40 @@ def test_measured_record_reduces_to_the_papers_first_cycles(name):
     assert np.array_equal(overlay.measured_time, record.time)
     scale, unit = file_unit("heave")
     assert f"released {scale * release:.4g} {unit}" in overlay.measured_label
+
+
+def test_the_measured_records_later_cycles_are_the_reference_row(tmp_path):
+    """Where a case gives the first cycles of a measured record but no period or damping ratio
+    over its later cycles (the laboratory spheres), the comparison's reference row is the
+    measured record through the same decay fit as the CFD's, over the CFD's record length:
+    the later periods and damping set beside each other, and the CFD's differences taken
+    against them. Here a 3 s synthetic run: the measured record is fitted over its first 3 s.
+    The drop's own fit (0.1 D, 4.76 s) is 0.7654 s and ζ 0.093 — shorter than its first
+    period (0.787 s: the first cycle's large swing) — and within 0.2 % of a fit of its whole
+    6 s."""
+    case = load_case("lab_sphere")
+    run = layout.run_dir(case.name, "coarse", tmp_path)
+    (run / layout.MARKERS).mkdir(parents=True)
+    t = np.arange(0.0, 3.0, 0.002)
+    _finished_heave_run(run, t, -0.0348 + free_decay_curve(t, 0.0, 0.029, 0.76, 0.09))
+    out = compare_case(case, build_dir=tmp_path, potential=None)
+    rows = {r["source"]: r for r in out.rows if r["dof"] == "heave"}
+    record = reference_record(case, "heave")
+    keep = (record.time >= 0.0) & (record.time <= t[-1])
+    fit = analyse_decay(record.time[keep], record.offset[keep]).summary()
+    reference = rows["reference"]
+    assert reference["period"] == pytest.approx(fit["period_mean"], rel=1e-12)
+    assert reference["damping_ratio"] == pytest.approx(fit["damping_ratio"], rel=1e-12)
+    assert "first 3 s as the CFD's record" in reference["note"]
+    assert 0.76 < reference["period"] < 0.77 and 0.088 < reference["damping_ratio"] < 0.099
+    cfd = rows["CFD coarse"]
+    assert cfd["period_rel_diff"] == pytest.approx(cfd["period"] / reference["period"] - 1)
+    assert "vs reference" in cfd["basis"]
+    whole = analyse_decay(record.time[record.time >= 0], record.offset[record.time >= 0])
+    assert whole.summary()["period_mean"] == pytest.approx(fit["period_mean"], rel=0.002)
+    # a case without a record or a reference period keeps no reference row
+    plain = compare_case(load_case("cylinder_heave"), build_dir=tmp_path, potential=None)
+    assert not [r for r in plain.rows if r["source"] == "reference"]
 
 
 def test_a_measured_record_that_is_not_one_is_refused(tmp_path):

@@ -15,6 +15,8 @@ trim → heave, roll, pitch) or lists a reference for:
   step), with the Richardson extrapolation in the note, when ``floatfoam validate`` has
   studied it;
 * **reference**: the measured value of the case's ``[reference]`` table (value ± uncertainty);
+  without a period or damping ratio there, the decay fit of its measured record
+  (``<dof>_record``) over the CFD's record length (:func:`record_fit`);
 * **<dof>, first 3 cycles**: when the reference gives the first cycles of a measured record
   (``<dof>_first_period``, ``_first_damping_ratio``, ``_first_trough``), each CFD record
   reduced the same way (:func:`floatfoam.analysis.extrema.crossing_reduction`), and, unless
@@ -383,15 +385,43 @@ def _first_cycle_rows(case, dof, analyses, reference, study, model: Callable | N
     return rows
 
 
-def _reference_row(case, dof, reference):
+def _reference_row(case, dof, reference, window: float | None = None):
+    """The ``[reference]`` period and damping ratio of ``dof``; without them, the decay fit of
+    the case's measured record (:func:`record_fit`) over ``window`` s from the release."""
     period = reference_entry(reference, f"{dof}_period")
     zeta = reference_entry(reference, f"{dof}_damping_ratio")
     if period is None and zeta is None:
-        return None
+        return record_fit(case, dof, window)
 
     sources = sorted({e[2] for e in (period, zeta) if e is not None and e[2]})
     return _row(case.name, dof, "reference", period[0] if period else None, _range(period),
                 zeta[0] if zeta else None, _range(zeta), "; ".join(sources))
+
+
+def record_fit(case, dof: str, window: float | None = None) -> dict | None:
+    """The measured record of ``dof`` (:func:`reference_record`) through the decay fit the CFD
+    records go through (:func:`analyse_decay`), over its first ``window`` s from the release
+    (the CFD's record, so that both fit the same cycles; None: all of it), as the reference
+    row: its later periods and damping beside the first cycles' reduction. The interval is
+    the fit's 95 % one on this one record, not the spread between repeated drops. None
+    without a record; a row with the reason when it cannot be fitted."""
+    measured = reference_record(case, dof)
+    if measured is None:
+        return None
+    keep = (measured.time >= 0.0) & (measured.time <= (window or np.inf))
+    scale = math.pi / 180.0 if dofs.dof(dof).is_angle else 1.0
+    what = f"decay fit of the measured record ({measured.source})"
+    try:
+        result = analyse_decay(measured.time[keep], measured.offset[keep] * scale,
+                               units=file_unit(dof), name=dofs.dof(dof).column)
+    except InputError as err:
+        return _row(case.name, dof, "reference", note=f"{what}: not fitted ({err})")
+    s = result.summary()
+    span = measured.time[keep][-1]
+    return _row(case.name, dof, "reference", s["period_mean"], s["period_ci95"],
+                s["damping_ratio"], s["damping_ratio_ci95"],
+                f"{what}, its first {span:.3g} s as the CFD's record; {s['n_cycles']:.2g} "
+                "cycles; 95 % interval of the fit on this one record")
 
 
 def _relative_differences(rows: list[dict]) -> None:
@@ -444,7 +474,8 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
         band = _band_row(case, dof, dof, study, ("period", "damping_ratio"))
         rows += [band] if band else []
         comparison.analyses += analyses
-        ref_row = _reference_row(case, dof, reference)
+        window = max((float(a.time[-1] - a.time[0]) for a in analyses), default=None)
+        ref_row = _reference_row(case, dof, reference, window)
         if ref_row is not None:
             rows.append(ref_row)
         _relative_differences(rows)

@@ -54,6 +54,7 @@ from floatfoam.analysis.compare import (
     analyse_run,
     excited_dofs,
     first_cycles,
+    record_fit,
     reference_entry,
     settled_level,
 )
@@ -117,6 +118,7 @@ class RunValues:
     morphing: float = 1.0  # factor of the morphing distances
     values: dict = field(default_factory=dict)  # key of QUANTITIES → value (None: failed)
     note: str = ""
+    span: float | None = None  # s: the record's length from the release
 
 
 def study_runs(case_name: str, build: Path, time_level: str = TIME_STEP_LEVEL,
@@ -169,6 +171,7 @@ def _run_values(name: str, divisor: int, run: Path, dof: str,
                   "first_damping_ratio": first.damping_ratio if first else None,
                   "first_trough": first.first_trough if first else None}
     out.note = f"{s['n_cycles']:.1f} cycles"
+    out.span = float(time[-1] - time[0])
     return out
 
 
@@ -274,19 +277,29 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
                 "time": time.as_dict() if not isinstance(time, str) else {"note": time},
                 "uncertainty": numerical_uncertainty(grid, time),
                 "morphing": morphing_study(runs, key, morphing)}
-        entry["reference"] = measured(case, dof)
+        spans = [r.span for r in runs.values() if r.span is not None]
+        entry["reference"] = measured(case, dof, max(spans, default=None))
         out["dofs"][dof] = entry
     return out
 
 
-def measured(case, dof: str) -> dict:
+def measured(case, dof: str, window: float | None = None) -> dict:
     """The case's ``[reference]`` values of the study's quantities, ``<dof>_<key>`` (code
-    units): key → [value, uncertainty or None, source]."""
+    units): key → [value, uncertainty or None, source]. Without a period and damping ratio
+    there, those of its measured record's decay fit over ``window`` s, the runs' record
+    (:func:`~floatfoam.analysis.compare.record_fit`; the uncertainty is half the fit's 95 %
+    interval)."""
     out = {}
     for key, _, _ in QUANTITIES:
         entry = reference_entry(case.reference or {}, f"{dof}_{key}")
         if entry is not None:
             out[key] = list(entry)
+    if "period" not in out and "damping_ratio" not in out:
+        fit = record_fit(case, dof, window)
+        for key, ci in (("period", "period_ci"), ("damping_ratio", "damping_ci")):
+            if fit is not None and fit[key] is not None:
+                half = (fit[ci][1] - fit[ci][0]) / 2 if fit[ci] else None
+                out[key] = [fit[key], half, fit["note"]]
     return out
 
 
