@@ -16,16 +16,18 @@ from floatfoam import layout
 from floatfoam.analysis import gci
 from floatfoam.analysis.compare import (
     compare_case,
+    record_fit,
     reference_entry,
-    reference_record,
     settled_level,
 )
 from floatfoam.analysis.decay import analyse_decay
 from floatfoam.analysis.extrema import crossing_reduction
+from floatfoam.analysis.measured import reference_record
 from floatfoam.analysis.plots import free_decay_curve
 from floatfoam.analysis.report import Sources, _overlay, build_report
 from floatfoam.analysis.validation import (
     _convergence,
+    measured,
     numerical_uncertainty,
     plan,
     validate_case,
@@ -467,13 +469,28 @@ def test_the_measured_records_later_cycles_are_the_reference_row(tmp_path):
     reference = rows["reference"]
     assert reference["period"] == pytest.approx(fit["period_mean"], rel=1e-12)
     assert reference["damping_ratio"] == pytest.approx(fit["damping_ratio"], rel=1e-12)
-    assert "first 3 s as the CFD's record" in reference["note"]
+    assert "first 3 s, as the CFD's record" in reference["note"]
+    # the study sets the same fit beside its runs' T_d and ζ, ± half the fit's interval
+    study = measured(case, "heave", t[-1])
+    low, high = fit["period_ci95"]
+    assert study["period"][:2] == pytest.approx([fit["period_mean"], (high - low) / 2])
+    assert study["damping_ratio"][0] == pytest.approx(fit["damping_ratio"])
+    assert "0.1D drop 3" in study["period"][2]
+    assert study["first_period"][0] == 0.7869  # the paper's own reduction stays
+    # a CFD record longer than the measured one: the whole record, said so
+    assert "shorter than the CFD's 9 s" in record_fit(case, "heave", 9.0)["note"]
     assert 0.76 < reference["period"] < 0.77 and 0.088 < reference["damping_ratio"] < 0.099
     cfd = rows["CFD coarse"]
     assert cfd["period_rel_diff"] == pytest.approx(cfd["period"] / reference["period"] - 1)
     assert "vs reference" in cfd["basis"]
     whole = analyse_decay(record.time[record.time >= 0], record.offset[record.time >= 0])
     assert whole.summary()["period_mean"] == pytest.approx(fit["period_mean"], rel=0.002)
+    # a record that is not one gives the row with the reason, not a failed report
+    folder = tmp_path / "odd"
+    shutil.copytree(layout.CASES_DIR / "lab_sphere", folder)
+    (folder / "kramer2021_01D_rep3.csv").write_text("time_s,heave_m\n0,1\n0,2\n0.1,3\n")
+    odd = record_fit(load_case(str(folder)), "heave", 3.0)
+    assert odd["period"] is None and "not fitted (reference.heave_record" in odd["note"]
     # a case without a record or a reference period keeps no reference row
     plain = compare_case(load_case("cylinder_heave"), build_dir=tmp_path, potential=None)
     assert not [r for r in plain.rows if r["source"] == "reference"]

@@ -37,11 +37,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
-
 from floatfoam import dofs, layout
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.analysis.extrema import crossing_reduction
+from floatfoam.analysis.measured import fit_record, reference_record
 from floatfoam.analysis.uncertainty import fine_band, read_study
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
@@ -91,40 +90,6 @@ def cfd_runs(case_name: str, build_dir: str | Path) -> list[tuple[str, Path]]:
     runs = ((level, layout.run_dir(case_name, level, Path(build_dir))) for level in layout.LEVELS)
     return [(level, run / "motion.csv") for level, run in runs
             if (run / "motion.csv").is_file() and layout.is_finished(run)]
-
-
-@dataclass(frozen=True)
-class MeasuredRecord:
-    """A measured decay record beside the case (``[reference] <dof>_record``): time from the
-    release (s) and the DoF's offset from its equilibrium (m or deg), as the file gives them."""
-
-    time: np.ndarray
-    offset: np.ndarray
-    source: str
-    path: Path
-
-
-def reference_record(case, dof: str) -> MeasuredRecord | None:
-    """The measured record of ``dof`` named by ``[reference] <dof>_record = { file, source }``
-    (a CSV beside case.toml: a header line, then time from the release and offset from the
-    equilibrium; samples before the release, at negative times, are kept); None without one.
-    Raises InputError naming the key when the file is missing or not such a series."""
-    key = f"{dof}_record"
-    entry = (case.reference or {}).get(key)  # its table and file checked by load_case
-    if entry is None:
-        return None
-    path = Path(case.path) / entry["file"]
-    try:
-        data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    except (OSError, ValueError) as err:
-        raise InputError(f"reference.{key}: {path} could not be read ({err}); valid is a CSV "
-                         "with a header line and two columns: time (s), offset") from None
-    if data.shape[1] != 2 or np.count_nonzero(data[:, 0] >= 0.0) < 3 \
-            or not np.all(np.diff(data[:, 0]) > 0) or not np.all(np.isfinite(data)):
-        raise InputError(f"reference.{key}: {path} is not a record; valid is a CSV with two "
-                         "finite columns, time (s) increasing with at least 3 samples from "
-                         "the release (t ≥ 0), and the offset")
-    return MeasuredRecord(data[:, 0], data[:, 1], str(entry.get("source", "")), path)
 
 
 def reference_entry(reference: dict, key: str) -> tuple[float, float | None, str] | None:
@@ -385,43 +350,49 @@ def _first_cycle_rows(case, dof, analyses, reference, study, model: Callable | N
     return rows
 
 
-def _reference_row(case, dof, reference, window: float | None = None):
+def _reference_row(case, dof, reference, window: float | None = None,
+                   options: dict | None = None):
     """The ``[reference]`` period and damping ratio of ``dof``; without them, the decay fit of
     the case's measured record (:func:`record_fit`) over ``window`` s from the release."""
     period = reference_entry(reference, f"{dof}_period")
     zeta = reference_entry(reference, f"{dof}_damping_ratio")
     if period is None and zeta is None:
-        return record_fit(case, dof, window)
+        return record_fit(case, dof, window, options)
 
     sources = sorted({e[2] for e in (period, zeta) if e is not None and e[2]})
     return _row(case.name, dof, "reference", period[0] if period else None, _range(period),
                 zeta[0] if zeta else None, _range(zeta), "; ".join(sources))
 
 
-def record_fit(case, dof: str, window: float | None = None) -> dict | None:
-    """The measured record of ``dof`` (:func:`reference_record`) through the decay fit the CFD
-    records go through (:func:`analyse_decay`), over its first ``window`` s from the release
-    (the CFD's record, so that both fit the same cycles; None: all of it), as the reference
-    row: its later periods and damping beside the first cycles' reduction. The interval is
-    the fit's 95 % one on this one record, not the spread between repeated drops. None
-    without a record; a row with the reason when it cannot be fitted."""
-    measured = reference_record(case, dof)
-    if measured is None:
+def record_fit(case, dof: str, window: float | None = None, options: dict | None = None
+               ) -> dict | None:
+    """The case's measured record of ``dof`` (:mod:`floatfoam.analysis.measured`) through the
+    decay fit the CFD records go through (``options`` as theirs), from the release to
+    ``window`` s (the longest CFD record, so that both fit the same cycles; None: all of it),
+    as the reference row: its later periods and damping beside the first cycles'
+    reduction. The interval is the fit's 95 % one on this one record, not the spread between
+    repeated drops. None without a record; a row with the reason when the record cannot be
+    read or fitted."""
+    entry = (case.reference or {}).get(f"{dof}_record")
+    if entry is None:
         return None
-    keep = (measured.time >= 0.0) & (measured.time <= (window or np.inf))
-    scale = math.pi / 180.0 if dofs.dof(dof).is_angle else 1.0
-    what = f"decay fit of the measured record ({measured.source})"
+    what = f"decay fit of the measured record ({entry.get('source', '')})"
     try:
-        result = analyse_decay(measured.time[keep], measured.offset[keep] * scale,
-                               units=file_unit(dof), name=dofs.dof(dof).column)
+        record = reference_record(case, dof)
+        result, span = fit_record(record, dof, window, **(options or {}))
     except InputError as err:
         return _row(case.name, dof, "reference", note=f"{what}: not fitted ({err})")
+    if window is None:
+        extent = f"all of it ({span:.3g} s; no CFD record to match)"
+    elif span < window - 1e-9:
+        extent = f"all of it ({span:.3g} s), shorter than the CFD's {window:.3g} s"
+    else:
+        extent = f"its first {span:.3g} s, as the CFD's record"
     s = result.summary()
-    span = measured.time[keep][-1]
     return _row(case.name, dof, "reference", s["period_mean"], s["period_ci95"],
                 s["damping_ratio"], s["damping_ratio_ci95"],
-                f"{what}, its first {span:.3g} s as the CFD's record; {s['n_cycles']:.2g} "
-                "cycles; 95 % interval of the fit on this one record")
+                f"{what}, {extent}; {s['n_cycles']:.2g} cycles; 95 % interval of the fit "
+                "on this one record")
 
 
 def _relative_differences(rows: list[dict]) -> None:
@@ -474,8 +445,8 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
         band = _band_row(case, dof, dof, study, ("period", "damping_ratio"))
         rows += [band] if band else []
         comparison.analyses += analyses
-        window = max((float(a.time[-1] - a.time[0]) for a in analyses), default=None)
-        ref_row = _reference_row(case, dof, reference, window)
+        window = max((float(a.time[-1]) for a in analyses), default=None)
+        ref_row = _reference_row(case, dof, reference, window, analysis_options)
         if ref_row is not None:
             rows.append(ref_row)
         _relative_differences(rows)

@@ -38,12 +38,12 @@ from floatfoam.analysis.compare import (
     fmt,
     potential_flow,
     reference_entry,
-    reference_record,
     table_rows,
     theory_equilibrium,
     write_comparison,
 )
 from floatfoam.analysis.document import Document
+from floatfoam.analysis.measured import reference_record
 from floatfoam.analysis.plots import Overlay, plot_decay
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
@@ -173,7 +173,9 @@ def _comparison_section(doc: Document, comparison: Comparison) -> None:
         doc.paragraph("Theory rows give the undamped natural period; CFD rows the damped period "
                       "T_d of the record with its 95 % confidence interval (from the fit's "
                       "covariance: optimistic when the misfit is correlated in time); the "
-                      "reference row its value ± the stated uncertainty. Δ: relative difference "
+                      "reference row its value ± the stated uncertainty, or, where the "
+                      "reference gives only a measured record, that record's decay fit over "
+                      "the CFD's span with the fit's 95 % interval. Δ: relative difference "
                       "to the reference, else to the exact linear theory.", note=True)
     doc.bullets(comparison.notes)
 

@@ -7,7 +7,9 @@ each DoF the release excites and each quantity (:data:`QUANTITIES`: the damped p
 damping ratio of the whole record's fit, and the first cycles as a basin reduces its records,
 :func:`floatfoam.analysis.extrema.crossing_reduction` — the first period, twice the first
 trough's time between zero crossings, ζ of the first six extrema and the first trough —, each
-beside the case's ``[reference]`` measurement of it where there is one) it gives
+beside the case's ``[reference]`` measurement of it where there is one; the whole record's T_d
+and ζ beside its measured record's decay fit over the same span where the reference gives only
+the record, :func:`floatfoam.analysis.compare.record_fit`) it gives
 
 * the study of Celik et al. (2008) on coarse, medium, fine (:mod:`floatfoam.analysis.gci`:
   observed order, Richardson extrapolation, GCI_fine — or the word for how it fails to
@@ -171,7 +173,7 @@ def _run_values(name: str, divisor: int, run: Path, dof: str,
                   "first_damping_ratio": first.damping_ratio if first else None,
                   "first_trough": first.first_trough if first else None}
     out.note = f"{s['n_cycles']:.1f} cycles"
-    out.span = float(time[-1] - time[0])
+    out.span = float(time[-1])
     return out
 
 
@@ -296,10 +298,11 @@ def measured(case, dof: str, window: float | None = None) -> dict:
             out[key] = list(entry)
     if "period" not in out and "damping_ratio" not in out:
         fit = record_fit(case, dof, window)
+        source = ((case.reference or {}).get(f"{dof}_record") or {}).get("source", "")
         for key, ci in (("period", "period_ci"), ("damping_ratio", "damping_ci")):
             if fit is not None and fit[key] is not None:
                 half = (fit[ci][1] - fit[ci][0]) / 2 if fit[ci] else None
-                out[key] = [fit[key], half, fit["note"]]
+                out[key] = [fit[key], half, f"{source}: decay fit over the runs' record"]
     return out
 
 
