@@ -571,20 +571,19 @@ def test_the_level_a_3d_heave_record_settles_at(tmp_path):
     from floatfoam.meshing.volume_report import discrete_volume_report
 
     overrides = ["release.heave=0.01", "release.heel=0.0"]
+    small = load_case("ellipsoid", overrides)
+    wide = load_case("ellipsoid", [*overrides, "domain.half_length=6.0", "domain.half_width=6.0"])
+    theory = theory_summary(small)
+    area = theory.waterplane_area
+    assert area == pytest.approx(math.pi * 0.15**2, rel=1e-3)
+    report = discrete_volume_report(wide, "coarse")
+    shift = report["equilibrium_shift"]
+    assert shift != pytest.approx(report["meridian"]["equilibrium_shift"], rel=0.05)
+    expected = -0.05 + shift + area * 0.01 / (144.0 - area)
     run = layout.run_dir("ellipsoid", "coarse", tmp_path)
     (run / layout.MARKERS).mkdir(parents=True)
     for mesh in ("3d", "3d-half"):
         info = {"mesh": mesh, "z_G_equilibrium": -0.05}
         (run / layout.MARKERS / "info.json").write_text(json.dumps(info))
-        case = load_case("ellipsoid", overrides)
-        theory = theory_summary(case)
-        assert settled_level(case, "heave", run, theory) is None  # 16 m²: rise 0.44 %
-        case = load_case("ellipsoid", [*overrides, "domain.half_length=6.0",
-                                       "domain.half_width=6.0"])
-        area = theory.waterplane_area
-        assert area == pytest.approx(math.pi * 0.15**2, rel=1e-3)
-        report = discrete_volume_report(case, "coarse")
-        shift = report["equilibrium_shift"]
-        assert shift != pytest.approx(report["meridian"]["equilibrium_shift"], rel=0.05)
-        expected = -0.05 + shift + area * 0.01 / (144.0 - area)
-        assert settled_level(case, "heave", run, theory) == pytest.approx(expected, rel=1e-9)
+        assert settled_level(small, "heave", run, theory) is None  # 16 m²: rise 0.44 %
+        assert settled_level(wide, "heave", run, theory) == pytest.approx(expected, rel=1e-9)
