@@ -19,7 +19,7 @@ export MPLBACKEND := Agg
 # the CFD cases: `make <case>` runs one (LEVEL=coarse|medium|fine NP=2 SET="...")
 CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cylinder_capsize \
 	parabolic_cylinder hyperbolic_cylinder box_bilge box_bilge_heave sphere sphere_25mm sphere_50mm \
-	ellipsoid_roll ellipsoid ellipsoid_printed_verdict stl_pontoon superellipsoid_buoy lab_sphere \
+	ellipsoid_roll ellipsoid_pitch ellipsoid ellipsoid_printed_verdict stl_pontoon superellipsoid_buoy lab_sphere \
 	lab_sphere_03D lab_sphere_05D \
 	flume_section_roll flume_section_heave
 .PHONY: $(CFD_CASES) help setup run test mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures bench-theory bench-potential bench-cfd clean

@@ -24,8 +24,8 @@ from floatfoam.layout import ROOT, build_dir
 
 # the 3D cases: ~0.3 s of wall per 1.1 ms step on 2 ranks (ellipsoid_roll, half domain), ~0.6 s
 # per step (stl_pontoon, 155,916 tetrahedra in the whole tank); superellipsoid_buoy as the pontoon
-SHORTER = {"ellipsoid_roll": 0.5, "ellipsoid": 0.5, "ellipsoid_printed_verdict": 0.45,
-           "stl_pontoon": 0.2, "superellipsoid_buoy": 0.2}
+SHORTER = {"ellipsoid_roll": 0.5, "ellipsoid_pitch": 0.5, "ellipsoid": 0.5,
+           "ellipsoid_printed_verdict": 0.45, "stl_pontoon": 0.2, "superellipsoid_buoy": 0.2}
 
 
 def main() -> int:

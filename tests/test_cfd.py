@@ -120,7 +120,8 @@ def test_interrupted_run_resumes(tmp_path):
     run_dir = tmp_path / "cylinder_heave" / "coarse"
     child = subprocess.Popen([sys.executable, "-c", RUN_IN_CHILD, str(tmp_path)],
                              start_new_session=True, stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL)
+                             stderr=subprocess.DEVNULL,  # its scratch folder in tmp_path:
+                             env={**os.environ, "TMPDIR": str(tmp_path)})  # it is SIGKILLed
     deadline = time.monotonic() + 300
     while not (run_dir / "0.2" / "U").exists():
         assert child.poll() is None and time.monotonic() < deadline

@@ -42,7 +42,9 @@ def command(*extra: str, end_time: float = 0.6) -> list[str]:
 
 
 def environment(build: Path) -> dict:
-    return {**os.environ, "FLOATFOAM_BUILD": str(build)}
+    """The drivers build under ``build`` and keep their scratch there too: a SIGKILLed driver
+    cannot remove its meshing folder, which would be left in /tmp."""
+    return {**os.environ, "FLOATFOAM_BUILD": str(build), "TMPDIR": str(build)}
 
 
 def start(build: Path, *extra: str, end_time: float = 0.6) -> subprocess.Popen:
