@@ -102,11 +102,13 @@ def analysed(motion, name: str) -> dict:
 
 
 # make test's time step for the 2D sections: Courant 1 in the bulk and 0.5 at the interface (as
-# the 3D cases run; the sections' own runs hold 0.5 everywhere), steps up to 10 ms. On the
+# the 3D cases and the capsizing ellipse run; the sections' own runs hold 0.5 everywhere), steps
+# up to 10 ms. On the
 # sections the bulk Courant number, not the interface's, held the step: the air's spurious
 # currents above the free surface (cases/box_bilge/README.md). Measured on the cases' whole
-# coarse records, against their own steps (2 ranks, 2026-12-01): steps and solver time
-# halved (box_bilge roll 1,181 → 732 steps, 180 → 103 s; elliptic heave 577 → 301, 63 → 33 s);
+# coarse records, against their own steps (2 ranks, 2026-12-01): 38–55 % fewer steps and
+# solver time (box_bilge roll 1,181 → 732 steps, clock 180 → 103 s; elliptic heave 577 → 301,
+# 63 → 33 s);
 # the periods the tests check moved by at most 0.9 % (the heave periods from the extrema: box
 # +0.76 %, ellipse +0.88 %, parabola +0.04 %; the roll T_d: box +0.01 %, ellipse −0.07 %,
 # hyperbola −0.21 %), the settled level by ≤ 0.05 mm; ζ, not checked here, by −2 to +13 %.

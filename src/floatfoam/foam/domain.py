@@ -40,7 +40,8 @@ class RunMesh:
     cells : the cell count (None for a gmsh mesh not generated yet)
     share : the fraction of the body inside the domain (a 2D slab t/L, a wedge θ/360°, 3D 1);
         mass and inertia are scaled by it
-    x_mid : x of the body's centre of mass in the domain (mid-slab of a 2D mesh, 0 otherwise)
+    x_mid : x of the middle of a 2D slab, where its G goes (0 for the other kinds, whose G keeps
+        its own x: foam.render)
     extents : the tank's size along x, y, z, 0 along a direction one cell thick (for the
         domain decomposition)
     inner, outer : six-DoF morphing distances from the body (rigid inside, fixed beyond)
