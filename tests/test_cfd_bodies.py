@@ -87,7 +87,7 @@ def first_sway(t, y, period: float) -> float:
 
 # Sway with the roll: G's first swing within 10 % of the coupled model. Measured on the coarse
 # meshes, make test's records and step: ellipse −7.57 mm against −7.65 mm (−1 %), hyperbola
-# −9.39 against −9.06 mm (+4 %), ellipsoid (3D) −7.83 against −8.39 mm (−7 %); finer levels
+# −9.39 against −9.07 mm (+4 %), ellipsoid (3D) −7.83 against −8.39 mm (−7 %); finer levels
 # not run. Below 1 mm (the box, whose G is near its roll centre: 0.38 against 0.39 mm) the
 # swing is within the CFD's drift and is not checked.
 SWAY_TOLERANCE, SWAY_CHECKED = 0.10, 1e-3
@@ -103,15 +103,14 @@ def analysed(motion, name: str) -> dict:
 
 # make test's time step for the 2D sections: Courant 1 in the bulk and 0.5 at the interface (as
 # the 3D cases and the capsizing ellipse run; the sections' own runs hold 0.5 everywhere), steps
-# up to 10 ms. On the
-# sections the bulk Courant number, not the interface's, held the step: the air's spurious
-# currents above the free surface (cases/box_bilge/README.md). Measured on the cases' whole
-# coarse records, against their own steps (2 ranks, 2026-12-01): 38–55 % fewer steps and
-# solver time (box_bilge roll 1,181 → 732 steps, clock 180 → 103 s; elliptic heave 577 → 301,
-# 63 → 33 s);
-# the periods the tests check moved by at most 0.9 % (the heave periods from the extrema: box
-# +0.76 %, ellipse +0.88 %, parabola +0.04 %; the roll T_d: box +0.01 %, ellipse −0.07 %,
-# hyperbola −0.21 %), the settled level by ≤ 0.05 mm; ζ, not checked here, by −2 to +13 %.
+# up to 10 ms. On the sections the bulk Courant number, not the interface's, held the step: the
+# air's spurious currents above the free surface (cases/box_bilge/README.md). Measured on the
+# cases' whole coarse records, against their own steps (2 ranks, 2026-12-01): 38–55 % fewer
+# steps and solver time (box_bilge roll 1,181 → 732 steps, clock 180 → 103 s; elliptic heave
+# 577 → 301, 63 → 33 s); the periods the tests check moved by at most 0.9 % (the heave periods
+# from the extrema: box +0.76 %, ellipse +0.88 %, parabola +0.04 %; the roll T_d: box +0.01 %,
+# ellipse −0.07 %, hyperbola −0.21 %), the settled level by ≤ 0.05 mm; ζ, not checked here, by
+# −2 to +13 %.
 FAST_STEP = ["run.max_courant=1.0", "run.max_alpha_courant=0.5", "run.max_delta_t=0.01"]
 
 
@@ -240,9 +239,9 @@ def test_capsizing_ellipse_turns_over_to_its_stable_attitude(tmp_path):
 
     Its heel history follows the nonlinear inviscid model (exact GZ, no added inertia, no
     damping) to within 10 % in time up to 80° (measured: 2.8 % at 5°, 5.2 % at 80°; the fluid's
-    added inertia slows it; the medium level 2.8 % and 4.7 %, its README). Damping is light: on a 4 s record it still swung 27°–86° about the
-    stable attitude, so the settled attitude is not reached in a test's time; the check is that
-    the swing brackets it."""
+    added inertia slows it; the medium level 2.8 % and 4.7 %, its README). Damping is light: on
+    a 4 s record it still swung 27°–86° about the stable attitude, so the settled attitude is
+    not reached in a test's time; the check is that the swing brackets it."""
     from floatfoam.hydrostatics.gz import righting_arm
     from floatfoam.hydrostatics.roots import brentq
 
