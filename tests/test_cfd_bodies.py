@@ -182,8 +182,9 @@ def test_section_roll(tmp_path, name):
 
 @pytest.mark.parametrize("name, release, tolerance", [
     # 10 % of the draft: the linear range; measured CFD 0.6231 s, Cummins 0.6207 s (+0.4 %).
-    # 3 %: the grid studies (cases/sphere/README.md) put the fine levels +0.20 % ± 0.13 % (10 mm)
-    # and −1.6 % ± 0.68 % (50 mm) from Cummins' model, the coarse wedge within 0.6 % of them
+    # 3 %: the grid studies (cases/sphere/README.md) put the fine levels +0.20 % ± 0.13 %,
+    # −0.41 % ± 2.7 % and −1.6 % ± 0.68 % (10, 25, 50 mm) from Cummins' model, the coarse
+    # wedge within 0.8 % of them
     ("sphere", 0.01, 0.03),
     ("sphere_25mm", 0.025, 0.03),
     ("sphere_50mm", 0.05, 0.03),
