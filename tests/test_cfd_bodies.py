@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from floatfoam.analysis.decay import analyse_decay, decay_dict
+from floatfoam.analysis.decay import analyse_decay, decay_dict, find_crossings
 from floatfoam.analysis.extrema import first_extrema, period_from_extrema
 from floatfoam.case import load_case
 from floatfoam.dofs import dof
@@ -289,10 +289,10 @@ def test_triaxial_ellipsoid_roll_3d(tmp_path):
 
 
 def first_crossing(t, x) -> float:
-    """The time ``x`` first crosses zero (linear interpolation between the samples)."""
-    i = int(np.argmax(x < 0.0))
-    assert i > 0, "no zero crossing"
-    return float(t[i - 1] + (t[i] - t[i - 1]) * x[i - 1] / (x[i - 1] - x[i]))
+    """The time ``x`` first crosses zero (analysis.decay.find_crossings, no noise band)."""
+    times, _ = find_crossings(t, x, 0.0)
+    assert len(times), "no zero crossing"
+    return float(times[0])
 
 
 def test_triaxial_ellipsoid_pitch_3d(tmp_path):

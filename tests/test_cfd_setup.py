@@ -85,6 +85,17 @@ def test_release_about_the_equilibrium_attitude():
     assert step.motion_row()[4] == pytest.approx(math.degrees(state["pose"].heel))
 
 
+def six_dof(name, run_dir, overrides=()):
+    """The case, its release state and mesh plan, and the six-DoF coefficients the render
+    writes for them into ``run_dir``."""
+    from foamlib import FoamFile
+
+    case, state, mesh = planned(name, overrides)
+    render._motion(case, run_dir, mesh, state)
+    coeffs = FoamFile(run_dir / "constant" / "dynamicMeshDict")["sixDoFRigidBodyMotionCoeffs"]
+    return case, state, mesh, coeffs
+
+
 @pytest.mark.parametrize("name", ["ellipsoid_pitch", "superellipsoid_buoy"])
 def test_a_trimmed_body_gets_its_own_centre_of_mass(tmp_path, name):
     """The six-DoF centre of mass of a body trimmed at release is G where the trimmed body
@@ -92,16 +103,12 @@ def test_a_trimmed_body_gets_its_own_centre_of_mass(tmp_path, name):
     the buoy): its righting arm at release is then the theory's GM_pitch·sin θ. Until
     2026-12-01 the written x was 0, which took 21 % off the ellipsoid's arm and made it
     oscillate about a trim of 1.05° in CFD."""
-    from foamlib import FoamFile
-
     from floatfoam.hydrostatics.immersion import mesh_immersed
     from floatfoam.hydrostatics.theory import theory_summary
     from floatfoam.meshing import body_surface
     from floatfoam.meshing.levels import mesh_spec
 
-    case, state, mesh = planned(name)
-    render._motion(case, tmp_path, mesh, state)
-    coeffs = FoamFile(tmp_path / "constant" / "dynamicMeshDict")["sixDoFRigidBodyMotionCoeffs"]
+    case, state, _, coeffs = six_dof(name, tmp_path)
     cog = np.asarray(coeffs["centreOfMass"], dtype=float)
     assert np.allclose(cog, state["cog"], atol=1e-12)
     trim = math.radians(case.release["trim"])
@@ -120,11 +127,7 @@ def test_a_trimmed_body_gets_its_own_centre_of_mass(tmp_path, name):
 def test_a_section_centre_of_mass_is_mid_slab(tmp_path, name):
     """A 2D slab one cell thick holds G in its middle (the gmsh slab is centred on x = 0, the
     O-grid's starts there), whatever G's x along the section."""
-    from foamlib import FoamFile
-
-    case, state, mesh = planned(name, ["mass.cog=[0.05, 0.0, 0.0]"])
-    render._motion(case, tmp_path, mesh, state)
-    coeffs = FoamFile(tmp_path / "constant" / "dynamicMeshDict")["sixDoFRigidBodyMotionCoeffs"]
+    _, _, mesh, coeffs = six_dof(name, tmp_path, ["mass.cog=[0.05, 0.0, 0.0]"])
     assert coeffs["centreOfMass"][0] == pytest.approx(mesh.x_mid, abs=1e-12)
 
 

@@ -40,8 +40,8 @@ class RunMesh:
     cells : the cell count (None for a gmsh mesh not generated yet)
     share : the fraction of the body inside the domain (a 2D slab t/L, a wedge θ/360°, 3D 1);
         mass and inertia are scaled by it
-    x_mid : x of the middle of a 2D slab, where its G goes (0 for the other kinds, whose G keeps
-        its own x: foam.render)
+    x_mid : x of the middle of a 2D slab, where its G goes; None for the other kinds, whose G
+        keeps its own x (a trim moves it off x = 0)
     extents : the tank's size along x, y, z, 0 along a direction one cell thick (for the
         domain decomposition)
     inner, outer : six-DoF morphing distances from the body (rigid inside, fixed beyond)
@@ -53,7 +53,7 @@ class RunMesh:
     factor: float
     cells: int | None
     share: float
-    x_mid: float
+    x_mid: float | None
     extents: tuple[float, float, float]
     inner: float
     outer: float
@@ -107,7 +107,8 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
                else (2 * box.half_length, box.half_width, height)}[kind]
     inner, outer = _distances(case, float(body_extents(case.body).min()))
     return RunMesh(kind=kind, factor=level_factor(case, level), cells=None, share=share,
-                   x_mid=0.0, extents=extents, inner=inner, outer=outer)
+                   x_mid=0.0 if kind == "2d" else None, extents=extents, inner=inner,
+                   outer=outer)
 
 
 def _wedge_angle() -> float:

@@ -192,9 +192,8 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> None:
     mass = case.mass * mesh.share
     inertia = [mass * k * k for k in case.gyradius]
     # G's x: the slab's middle in a 2D mesh (where G lies along a section's length does not
-    # enter), else its own: a trim about G's level moves it off x = 0 (−z·sin θ from the body's
-    # axis, 2.6 mm for ellipsoid_pitch), which a half domain y ≥ 0 keeps as well
-    x = mesh.x_mid if mesh.kind in ("2d", "ogrid") else float(state["cog"][0])
+    # enter), else its own: a trim moves it off x = 0 (2.6 mm for ellipsoid_pitch)
+    x = float(state["cog"][0]) if mesh.x_mid is None else mesh.x_mid
     cog = [x, float(state["cog"][1]), float(state["cog"][2])]
     orientation = np.asarray(state["orientation"], dtype=float)
     coeffs = {
