@@ -3,6 +3,8 @@
 import math
 import re
 import shutil
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -179,3 +181,37 @@ def test_gmsh_to_foam_and_check_mesh(cases, tmp_path):
     assert quality["cells"] == result["cells"]
     assert quality["patches"]["frontAndBack"] == "empty"
     assert quality["max_non_orthogonality"] < 35.0  # measured 18.6° (unstructured core)
+
+
+SIGNALS_AFTER_GMSH = """
+import os, signal, sys
+from floatfoam.interrupts import SignalInterruptError, signals_interrupt
+from floatfoam.meshing import gmshio
+with signals_interrupt():
+    with gmshio.session("probe"):
+        pass
+    read, write = os.pipe()
+    os.close(read)
+    try:
+        os.write(write, b"x")
+    except BrokenPipeError:
+        print("SIGPIPE ignored")
+    for name in ("SIGTERM", "SIGHUP"):
+        try:
+            os.kill(os.getpid(), getattr(signal, name))
+            signal.sigtimedwait([], 0.5)  # the handler runs here
+        except SignalInterruptError as err:
+            print("raised", err)
+"""
+
+
+def test_gmsh_leaves_the_signal_handlers():
+    """After a gmsh session, SIGTERM and SIGHUP still raise (the command's finally blocks run)
+    and SIGPIPE is still ignored. gmsh 4.15.2's first initialize in a process sets all three to
+    their default actions, behind Python's back: a SIGTERM ended a run at once and left its
+    meshing folder in /tmp (interrupts.handlers_kept). In a fresh process: only the first
+    initialize does it."""
+    done = subprocess.run([sys.executable, "-c", SIGNALS_AFTER_GMSH], capture_output=True,
+                          text=True, timeout=60)
+    assert done.returncode == 0, (done.returncode, done.stderr)
+    assert done.stdout.split("\n")[:3] == ["SIGPIPE ignored", "raised SIGTERM", "raised SIGHUP"]

@@ -2,8 +2,8 @@
 
 Each test drives the ``floatfoam`` console script in its own process, as a user would, with
 ``FLOATFOAM_BUILD`` pointing into the test's folder: two drivers racing on one directory, a
-driver stopped with SIGTERM, SIGINT, SIGHUP or SIGKILL while interFoam runs, a time folder cut
-short, a run ending exactly at end_time, a hostfile, an odd rank count, a fatal
+driver stopped with SIGTERM, SIGINT, SIGHUP or SIGKILL while interFoam runs (and SIGTERM after
+gmsh meshed the domain, elliptic_cylinder), a time folder cut short, a run ending exactly at end_time, a hostfile, an odd rank count, a fatal
 OpenFOAM error, and the Slurm batch script's tasks run with bash.
 """
 
@@ -35,9 +35,9 @@ FLOATFOAM = str(Path(sys.executable).with_name("floatfoam"))
 CASE = "cylinder_heave"
 
 
-def command(*extra: str, end_time: float = 0.6) -> list[str]:
+def command(*extra: str, end_time: float = 0.6, case: str = CASE) -> list[str]:
     interval = min(end_time, 0.1)
-    return [FLOATFOAM, "run", CASE, "--set", f"run.end_time={end_time}", "--set",
+    return [FLOATFOAM, "run", case, "--set", f"run.end_time={end_time}", "--set",
             f"run.write_interval={interval}", *extra]
 
 
@@ -47,9 +47,9 @@ def environment(build: Path) -> dict:
     return {**os.environ, "FLOATFOAM_BUILD": str(build), "TMPDIR": str(build)}
 
 
-def start(build: Path, *extra: str, end_time: float = 0.6) -> subprocess.Popen:
+def start(build: Path, *extra: str, end_time: float = 0.6, case: str = CASE) -> subprocess.Popen:
     """A driver in the background, in a session of its own (signals reach it alone)."""
-    return subprocess.Popen(command(*extra, end_time=end_time), env=environment(build),
+    return subprocess.Popen(command(*extra, end_time=end_time, case=case), env=environment(build),
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
 
@@ -119,6 +119,22 @@ def test_interrupt_signals_stop_the_solver(tmp_path, sig, code):
     assert driver.returncode == code
     assert f"interrupted ({signal.Signals(sig).name})" in last_line(err)
     wait_gone(run_dir)
+
+
+def test_sigterm_after_gmsh_meshing(tmp_path):
+    """A gmsh-meshed case stopped by SIGTERM while interFoam runs ends as the O-grid's does: one
+    line, 143, the solver gone, and its meshing folder removed from TMPDIR. Until 2026-12-02
+    gmsh's first initialize had set SIGTERM's default action, which ended the driver at once."""
+    run_dir = tmp_path / "elliptic_cylinder" / "coarse"
+    driver = start(tmp_path, case="elliptic_cylinder")
+    wait_until(lambda: (run_dir / "motion.csv").is_file() and processes_in(run_dir), driver)
+    assert list(tmp_path.glob("floatfoam-mesh-*"))  # the meshing folder lives while it runs
+    driver.send_signal(signal.SIGTERM)
+    _, err = driver.communicate(timeout=30)
+    assert driver.returncode == 143, err
+    assert "interrupted (SIGTERM) at t = " in last_line(err)
+    wait_gone(run_dir)
+    assert not list(tmp_path.glob("floatfoam-mesh-*"))
 
 
 @pytest.mark.parametrize("ranks", [1, 2])

@@ -5,7 +5,9 @@ with the process that started them.
   :class:`SignalInterruptError`, so that every ``finally`` on the way stops what it started and
   the CLI prints one line and exits with 128 + the signal (130, 143, 129);
 * :func:`die_with_parent`: in a child process, the kernel's parent-death signal (Linux), so that
-  a SIGKILL of the parent takes the child with it.
+  a SIGKILL of the parent takes the child with it;
+* :func:`handlers_kept`: around a library call that resets the process's signal handlers
+  behind Python's back (gmsh), Python's are put back.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from __future__ import annotations
 import contextlib
 import ctypes
 import signal
+import threading
 
 PR_SET_PDEATHSIG = 1
 INTERRUPTS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
@@ -45,6 +48,28 @@ def signals_interrupt():
     finally:
         for s, h in previous.items():
             signal.signal(s, h)
+
+
+@contextlib.contextmanager
+def handlers_kept():
+    """On leaving the block, the handlers Python holds for SIGINT, SIGTERM, SIGHUP and SIGPIPE
+    are installed again in the process.
+
+    A C library may set a signal's action behind Python's back, and Python's own view
+    (``signal.getsignal``) does not change. gmsh 4.15.2's first ``gmsh.initialize`` in a process
+    sets SIGHUP, SIGTERM and SIGPIPE to their default actions (measured with ``sigaction``):
+    afterwards a SIGTERM ended a run at once, without its ``finally`` blocks — no one-line
+    message, its meshing folder left in /tmp — and a closed pipe killed the process. Outside
+    the main thread, where Python cannot set handlers, this does nothing."""
+    signals = (*INTERRUPTS, signal.SIGPIPE)
+    held = {s: signal.getsignal(s) for s in signals}
+    try:
+        yield
+    finally:
+        if threading.current_thread() is threading.main_thread():
+            for s, handler in held.items():
+                if handler is not None:  # None: not set from Python, nothing to put back
+                    signal.signal(s, handler)
 
 
 def die_with_parent(sig: int) -> None:

@@ -1,7 +1,8 @@
 """gmsh plumbing: one session at a time, mesh data out as NumPy arrays, files out.
 
 gmsh keeps one global model; :func:`session` opens it, sets quiet single-threaded defaults (the
-cores belong to the solver) and always finalises it, even when meshing fails. Sessions do not
+cores belong to the solver), keeps the process's signal handlers (which gmsh's first initialize
+resets) and always finalises it, even when meshing fails. Sessions do not
 nest: compute what needs its own session (e.g. the body's polygon) before opening another.
 """
 
@@ -13,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from floatfoam.interrupts import handlers_kept
+
 TRIANGLE, QUAD = 2, 3  # gmsh element types
 
 
@@ -23,7 +26,8 @@ def session(name: str = "floatfoam", verbosity: int = 1):
 
     if gmsh.isInitialized():
         raise RuntimeError("a gmsh session is already open: gmsh has one global model")
-    gmsh.initialize(readConfigFiles=False, interruptible=False)
+    with handlers_kept():  # gmsh's first initialize resets SIGTERM, SIGHUP and SIGPIPE
+        gmsh.initialize(readConfigFiles=False, interruptible=False)
     try:
         gmsh.option.setNumber("General.Verbosity", verbosity)
         gmsh.option.setNumber("General.NumThreads", 1)

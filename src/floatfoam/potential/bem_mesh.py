@@ -21,6 +21,7 @@ import numpy as np
 
 from floatfoam.bodies.geometry import to_earth
 from floatfoam.hydrostatics.immersion import clip_triangles
+from floatfoam.meshing import gmshio
 from floatfoam.potential.sections import panel_nodes, wetted_contour
 
 DEFAULT_PANELS_3D = 800  # hemisphere: ≤ 1.6 % from Hulme (1982) at ka ≤ 2 (see tests/)
@@ -83,13 +84,7 @@ def remesh(vertices: np.ndarray, faces: np.ndarray, panels: int = DEFAULT_PANELS
 
 def _gmsh_mesh(vertices: np.ndarray, faces: np.ndarray, size: float):
     """One gmsh pass: discrete surface → classified patches → triangles of side ``size``."""
-    import gmsh
-
-    gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.option.setNumber("General.NumThreads", 1)
-        gmsh.model.add("wetted")
+    with gmshio.session("wetted", verbosity=0) as gmsh:
         surface = gmsh.model.addDiscreteEntity(2)
         gmsh.model.mesh.addNodes(2, surface, np.arange(1, len(vertices) + 1), vertices.ravel())
         gmsh.model.mesh.addElementsByType(surface, 2, [], (faces + 1).ravel())
@@ -102,8 +97,6 @@ def _gmsh_mesh(vertices: np.ndarray, faces: np.ndarray, size: float):
         gmsh.model.mesh.generate(2)
         tags, coords, _ = gmsh.model.mesh.getNodes()
         node_tags = gmsh.model.mesh.getElementsByType(2)[1]
-    finally:
-        gmsh.finalize()
     new_vertices, new_faces = _triangles(tags, coords, node_tags)
     used = np.unique(new_faces)
     renumber = np.zeros(len(new_vertices), dtype=np.int64)
@@ -214,8 +207,6 @@ def waterplane_lid(vertices: np.ndarray, faces: np.ndarray, planes: tuple[str, .
     removal: the region bounded by the waterline and, for a half or quarter hull, the symmetry
     planes, meshed by gmsh with triangles of side ``size``. None if the waterline is not one
     chain (then Capytaine's own lid is used)."""
-    import gmsh
-
     chain = waterline_chain(vertices, faces)
     if chain is None:
         return None
@@ -229,10 +220,7 @@ def waterplane_lid(vertices: np.ndarray, faces: np.ndarray, planes: tuple[str, .
         points.append(np.zeros(2))  # the corner where the two planes meet
     else:
         return None
-    gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("lid")
+    with gmshio.session("lid", verbosity=0) as gmsh:
         tags = [gmsh.model.geo.addPoint(x, y, 0.0, size) for x, y in points]
         lines = []
         for k, (a, b) in enumerate(zip(tags, tags[1:] + tags[:1], strict=True)):
@@ -251,8 +239,6 @@ def waterplane_lid(vertices: np.ndarray, faces: np.ndarray, planes: tuple[str, .
         gmsh.model.mesh.generate(2)
         node_tags, coords, _ = gmsh.model.mesh.getNodes()
         element_tags = gmsh.model.mesh.getElementsByType(2)[1]
-    finally:
-        gmsh.finalize()
     lid_vertices, lid_faces = _triangles(node_tags, coords, element_tags)
     lid_vertices[:, 2] = 0.0
     return lid_vertices, lid_faces
