@@ -70,6 +70,21 @@ def test_a_wedge_moves_in_heave_alone():
     assert kinds == {"line", "orientation"}
 
 
+def test_morphing_past_the_clamped_bottom_is_named():
+    """The 0.5 D drop of the laboratory sphere starts with its lowest point at the still water,
+    0.9 m above the basin's bottom (Kramer et al. 2021: depth 0.900 m): a morphing zone out to
+    1.2 m reaches past the bottom (its medium level's bottom cell collapsed), 0.9 m does not."""
+    def warning(name, overrides=()):
+        case, state, mesh = planned(name, overrides)
+        return domain.clamped_bottom(mesh, case, state["pose"])
+
+    text = warning("lab_sphere_05D", ["run.outer_distance=1.2"])
+    assert "run.outer_distance = 1.2 m reaches past the tank's bottom, 0.9 m below" in text
+    assert text.endswith("valid is at most 0.9 m")
+    assert warning("lab_sphere_05D", ["run.outer_distance=0.9"]) is None
+    assert warning("sphere") is None  # 0.32 m of morphing, 1.9 m of water below
+
+
 def test_release_about_the_equilibrium_attitude():
     """The body starts heeled by the release from its equilibrium attitude; the solver's
     orientation is that attitude, and the motion series' angles are measured from the

@@ -3,8 +3,9 @@
 Each test drives the ``floatfoam`` console script in its own process, as a user would, with
 ``FLOATFOAM_BUILD`` pointing into the test's folder: two drivers racing on one directory, a
 driver stopped with SIGTERM, SIGINT, SIGHUP or SIGKILL while interFoam runs (and SIGTERM after
-gmsh meshed the domain, elliptic_cylinder), a time folder cut short, a run ending exactly at end_time, a hostfile, an odd rank count, a fatal
-OpenFOAM error, and the Slurm batch script's tasks run with bash.
+gmsh meshed the domain, elliptic_cylinder), a time folder cut short, a run ending exactly at
+end_time, a hostfile, an odd rank count, a fatal OpenFOAM error, and the Slurm batch script's
+tasks run with bash.
 """
 
 from __future__ import annotations

@@ -111,6 +111,28 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
                    outer=outer)
 
 
+def clamped_bottom(mesh: RunMesh, case: Case, release: Pose) -> str | None:
+    """A sentence when the morphing zone reaches past the tank's bottom, else None.
+
+    The bottom's points are clamped (fixedValue displacement) while the points just above it
+    still move with the six-DoF scale of their distance from the body, so the bottom's first
+    cell layer takes the rest of the motion. Measured: lab_sphere_05D (0.5 D drop, bottom
+    0.90 m below the body at release, outer distance 1.2 m) ran its coarse wedge, but at the
+    medium and fine levels, whose bottom layers are thinner, that layer's cell on the axis
+    collapsed at 0.356 and 0.276 s (checkMesh's smallest cell 2.8e-8 m³ at release, 1.4e-9 m³
+    at 0.352 s, on the bottom); with 0.9 m every level ran (cases/lab_sphere/README.md)."""
+    from floatfoam.hydrostatics.theory import lowest_point
+    from floatfoam.meshing.levels import tank
+
+    clearance = lowest_point(case, release) + tank(case).depth
+    if mesh.outer <= clearance:
+        return None
+    return (f"run.outer_distance = {mesh.outer:g} m reaches past the tank's bottom, "
+            f"{clearance:.3g} m below the body at release: the clamped bottom's first cell "
+            f"layer takes the rest of the motion and may collapse on a finer mesh; valid is "
+            f"at most {clearance:.3g} m")
+
+
 def _wedge_angle() -> float:
     from floatfoam.meshing.planar import WEDGE_ANGLE
 

@@ -143,6 +143,9 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     target = layout.run_dir(case.name, level, build_dir, time_step_divisor=time_step_divisor,
                             morphing=morphing)
     runner.check_path(target)
+    warning = domain.clamped_bottom(mesh, case, state["pose"])
+    if warning:
+        print(f"[{label}] warning: {warning}", file=sys.stderr)
     with tempfile.TemporaryDirectory(prefix="floatfoam-mesh-") as scratch:
         if mesh.mesher == "gmsh" and (force or not layout.step_done(target, "render")):
             print(f"[{label}] gmsh: meshing the {mesh.kind} domain", file=sys.stderr)

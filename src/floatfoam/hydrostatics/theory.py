@@ -133,7 +133,7 @@ def theory_summary(case: Case, eq: Equilibrium | None = None) -> TheorySummary:
     ]
     i_xx, i_yy, _ = imm.waterplane_inertia
     g_earth = rotation(eq.heel, eq.trim) @ case.cog + np.array([0.0, 0.0, eq.z_c])
-    draft, kg = -float(min(_lowest_point(case, eq), 0.0)), float(case.cog[2] - keel)
+    draft, kg = -float(min(lowest_point(case, eq), 0.0)), float(case.cog[2] - keel)
     from floatfoam.hydrostatics.memoir_case import memoir_printed_values, memoir_values
 
     printed = memoir_printed_values(case, kg=kg, draft=draft)
@@ -167,10 +167,13 @@ def theory_summary(case: Case, eq: Equilibrium | None = None) -> TheorySummary:
     )
 
 
-def _lowest_point(case: Case, eq: Equilibrium) -> float:
+def lowest_point(case: Case, placement) -> float:
+    """z of the body's lowest point in the earth frame at ``placement`` (anything with z_c, heel
+    and trim: an :class:`Equilibrium` or a mesh pose), from its surface mesh; upright, the
+    body's exact keel."""
     vertices, _ = case.body.surface_mesh()
-    rot = rotation(eq.heel, eq.trim)
+    rot = rotation(placement.heel, placement.trim)
     lowest = float((vertices @ rot.T)[:, 2].min())
-    if eq.heel == 0.0 and eq.trim == 0.0:
+    if placement.heel == 0.0 and placement.trim == 0.0:
         lowest = case.body.keel_z  # exact for the primitives, same as the mesh otherwise
-    return lowest + eq.z_c
+    return lowest + placement.z_c
