@@ -172,20 +172,34 @@ def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
     h/h_fine, one row per DoF: the three levels with the fine one's ± U_num, the level run with
     its time step halved (at that level's h), the coarse one with its morphing distances
     scaled, at h = 0 the Richardson-extrapolated value, and the case's measurement (a line and
-    its uncertainty's band) where its ``[reference]`` has one."""
+    its uncertainty's band) where its ``[reference]`` has one. One legend for the figure, below
+    the panels, the measurements' sources its title: a legend in each panel, with a source
+    a hundred characters long, squeezed the panels to slivers."""
     entries = list(study["dofs"].items()) or [("—", {"runs": {}, "quantities": {}})]
     columns = min(3, len(quantities))
     per_dof = -(-len(quantities) // columns)  # rows of panels per DoF
-    fig = Figure(figsize=(4 * columns, 3.2 * per_dof * len(entries)), layout="constrained")
+    fig = Figure(figsize=(4 * columns, 3.2 * per_dof * len(entries) + 0.8),
+                 layout="constrained")
     axes = fig.subplots(per_dof * len(entries), columns, squeeze=False).ravel()
+    sources = []
     for i, (dof, entry) in enumerate(entries):
         panels = axes[i * per_dof * columns:(i + 1) * per_dof * columns]
         for ax, (key, label, unit) in zip(panels, quantities, strict=False):
             if unit == "m or rad":  # a length or an angle, in code units
                 unit = "rad" if dof in dofs.NAMES and dofs.dof(dof).is_angle else "m"
-            _convergence_panel(ax, dof, entry, key, label, unit)
+            source = _convergence_panel(ax, dof, entry, key, label, unit)
+            if source and source not in sources:
+                sources.append(source)
         for ax in panels[len(quantities):]:
             ax.set_visible(False)
+    legend = {}
+    for ax in axes:
+        for handle, text in zip(*ax.get_legend_handles_labels(), strict=True):
+            legend.setdefault(text, handle)
+    if legend:
+        fig.legend(legend.values(), legend.keys(), loc="outside lower center",
+                   ncols=min(len(legend), 6), fontsize=8, title_fontsize=7,
+                   title="measured: " + "; ".join(sources) if sources else None)
     fig.suptitle(f"{study['case']}: grid and time-step convergence")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -193,7 +207,8 @@ def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
     return path
 
 
-def _convergence_panel(ax, dof, entry, key, label, unit) -> None:
+def _convergence_panel(ax, dof, entry, key, label, unit) -> str | None:
+    """One quantity's panel; returns its measurement's source (None without one)."""
     runs = entry["runs"]
     fine_cells = (runs.get("fine") or {}).get("cells")
     points = [((fine_cells / run["cells"]) ** (1 / run["dimension"]), run[key],
@@ -216,20 +231,19 @@ def _convergence_panel(ax, dof, entry, key, label, unit) -> None:
         fine = grid["values"][0]
         ax.errorbar([1.0], [fine], yerr=abs(fine) * q["uncertainty"], fmt="none", color="C0",
                     capsize=4, label="fine ± U_num")
+    kind = grid.get("kind") or grid.get("note") or ""
     if grid.get("extrapolated") is not None:
-        ax.plot([0.0], [grid["extrapolated"]], "D", color="C1",
-                label=f"extrapolated, p = {grid['order']:.2g}")
+        ax.plot([0.0], [grid["extrapolated"]], "D", color="C1", label="extrapolated (h = 0)")
+        kind += f", p = {grid['order']:.2g}"
     measured = entry.get("reference", {}).get(key)
+    source = None
     if measured is not None:
         value, uncertainty, source = measured
-        ax.axhline(value, color="k", lw=1, label=f"measured ({source})" if source
-                   else "measured")
+        ax.axhline(value, color="k", lw=1, label="measured ± its uncertainty")
         if uncertainty:
             ax.axhspan(value - uncertainty, value + uncertainty, color="0.85", zorder=0)
-    kind = grid.get("kind") or grid.get("note") or ""
     ax.set_title(f"{dof}: {label}\n{kind}", fontsize=9)
     ax.set_xlabel("h / h_fine")
     ax.set_ylabel(label.split(" (")[0] + (f" ({unit})" if unit else ""))
     ax.set_xlim(left=-0.1)
-    if ax.has_data():
-        ax.legend(fontsize=6)
+    return source or None
