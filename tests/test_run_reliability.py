@@ -114,7 +114,7 @@ def test_race_sigterm_truncated_time_and_resume(tmp_path):
                                              (signal.SIGHUP, 129, "elliptic_cylinder")])
 def test_interrupt_signals_stop_the_solver(tmp_path, sig, code, case):
     """SIGINT and SIGHUP stop driver and solver with one line and remove the driver's meshing
-    folder. The SIGHUP goes to a gmsh-meshed case: until 2026-12-02 gmsh's first initialize
+    folder. The SIGHUP goes to a gmsh-meshed case: until 2026-12-01 gmsh's first initialize
     had set SIGHUP's and SIGTERM's default actions, which ended such a driver at once, its
     folder left in TMPDIR (tests/test_meshing.py checks all three handlers)."""
     run_dir = tmp_path / case / "coarse"

@@ -234,14 +234,15 @@ def _convergence_panel(ax, dof, entry, key, label, unit) -> str | None:
     kind = grid.get("kind") or grid.get("note") or ""
     if grid.get("extrapolated") is not None:
         ax.plot([0.0], [grid["extrapolated"]], "D", color="C1", label="extrapolated (h = 0)")
-        kind += f", p = {grid['order']:.2g}"
+        kind = ", ".join(filter(None, [kind, f"p = {grid['order']:.2g}"]))
     measured = entry.get("reference", {}).get(key)
     source = None
     if measured is not None:
         value, uncertainty, source = measured
-        ax.axhline(value, color="k", lw=1, label="measured ± its uncertainty")
+        ax.axhline(value, color="k", lw=1, label="measured")
         if uncertainty:
-            ax.axhspan(value - uncertainty, value + uncertainty, color="0.85", zorder=0)
+            ax.axhspan(value - uncertainty, value + uncertainty, color="0.85", zorder=0,
+                       label="its uncertainty")
     ax.set_title(f"{dof}: {label}\n{kind}", fontsize=9)
     ax.set_xlabel("h / h_fine")
     ax.set_ylabel(label.split(" (")[0] + (f" ({unit})" if unit else ""))

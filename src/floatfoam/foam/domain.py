@@ -120,17 +120,19 @@ def clamped_bottom(mesh: RunMesh, case: Case, release: Pose) -> str | None:
     0.90 m below the body at release, outer distance 1.2 m) ran its coarse wedge, but at the
     medium and fine levels, whose bottom layers are thinner, that layer's cell on the axis
     collapsed at 0.356 and 0.276 s (checkMesh's smallest cell 2.8e-8 m³ at release, 1.4e-9 m³
-    at 0.352 s, on the bottom); with 0.9 m every level ran (cases/lab_sphere/README.md)."""
+    at 0.352 s, on the bottom); with 0.9 m every level ran (cases/lab_sphere_05D/README.md).
+    An overshoot within 1 % of the band between the distances is let pass: the scale there is
+    below 3e-4 (it falls as the square of the distance left to the outer one)."""
     from floatfoam.hydrostatics.theory import lowest_point
     from floatfoam.meshing.levels import tank
 
     clearance = lowest_point(case, release) + tank(case).depth
-    if mesh.outer <= clearance:
+    if mesh.outer - clearance <= 0.01 * (mesh.outer - mesh.inner):
         return None
     return (f"run.outer_distance = {mesh.outer:g} m reaches past the tank's bottom, "
             f"{clearance:.3g} m below the body at release: the clamped bottom's first cell "
-            f"layer takes the rest of the motion and may collapse on a finer mesh; valid is "
-            f"at most {clearance:.3g} m")
+            f"layer takes the rest of the motion and may collapse on a finer mesh (an outer "
+            f"distance of at most {clearance:.3g} m keeps the bottom out of the zone)")
 
 
 def _wedge_angle() -> float:

@@ -171,9 +171,8 @@ def lowest_point(case: Case, placement) -> float:
     """z of the body's lowest point in the earth frame at ``placement`` (anything with z_c, heel
     and trim: an :class:`Equilibrium` or a mesh pose), from its surface mesh; upright, the
     body's exact keel."""
+    if placement.heel == 0.0 and placement.trim == 0.0:
+        return case.body.keel_z + placement.z_c  # exact for the primitives, as the mesh's else
     vertices, _ = case.body.surface_mesh()
     rot = rotation(placement.heel, placement.trim)
-    lowest = float((vertices @ rot.T)[:, 2].min())
-    if placement.heel == 0.0 and placement.trim == 0.0:
-        lowest = case.body.keel_z  # exact for the primitives, same as the mesh otherwise
-    return lowest + placement.z_c
+    return float((vertices @ rot.T)[:, 2].min()) + placement.z_c
