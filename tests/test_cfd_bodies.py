@@ -218,7 +218,7 @@ def test_lab_sphere_first_cycle_against_the_basin(tmp_path):
     coarse to fine 0.28 %, the basin's ± 0.07 %, rounded up (the fine level's U_num is 0.28 %,
     at order 2 where the levels' p = 4.1 is no bound). Trough within 1.5 %: the levels move it
     by 0.4 % from coarse to fine, the halved time step by 0.6 %, the basin's ± 0.4 %. (At the
-    former morphing distances, 0.2/1.2 m, the same coarse numbers to 0.01 %.)"""
+    morphing distances until 2026-12-01, 0.2/1.2 m, the same coarse numbers to 0.02 %.)"""
     from floatfoam import layout
     from floatfoam.analysis.compare import reference_entry, settled_level
     from floatfoam.analysis.extrema import crossing_reduction
