@@ -270,14 +270,15 @@ def test_capsizing_ellipse_turns_over_to_its_stable_attitude(tmp_path):
 
 def test_triaxial_ellipsoid_roll_3d(tmp_path):
     """The triaxial ellipsoid (0.20, 0.15, 0.10) m released heeled 10°, in 3D on the half
-    domain x ≥ 0 (symmetry plane x = 0, which its roll keeps), on a shortened record of 0.45 s,
+    domain x ≥ 0 (symmetry plane x = 0, which its roll keeps), on a shortened record of 0.37 s,
     through its first trough at 0.324 s (the whole 3.6 s, 16 min 40 s, runs under `make
     ellipsoid_roll`; make test's 20 minutes hold no more): stable, the time of the first trough
     (half the period) within 5 % of Cummins' model free in sway, heave and roll as the CFD body
-    (measured 0.3241 s against 0.3237 s, +0.1 %), G's sway by then within 10 % (−7.83 mm
-    against −8.39 mm), the draft within 1 %. On the whole record the fitted periods differ by
-    −1.6 % (0.6596 s against 0.6705 s); the roll-only model about G (0.7095 s) was −7.0 % away."""
-    record = 0.45
+    (measured 0.3237 s against 0.3237 s, +0.01 %; 0.3241 s on the 0.45 s record make test ran
+    until 2026-12-01), G's sway by then within 10 % (−7.83 mm against −8.39 mm), the draft
+    within 1 %. On the whole record the fitted periods differ by −1.6 % (0.6596 s against
+    0.6705 s); the roll-only model about G (0.7095 s) was −7.0 % away."""
+    record = 0.37
     case, theory, motion, info = cfd("ellipsoid_roll", tmp_path, [f"run.end_time={record}"])
     assert info["mesh"] == "3d-half"
     assert motion["roll"][0] == pytest.approx(10.0, abs=1e-3)
@@ -299,13 +300,13 @@ def first_crossing(t, x) -> float:
 def test_triaxial_ellipsoid_pitch_3d(tmp_path):
     """The triaxial ellipsoid of ellipsoid_roll released trimmed 5° (cases/ellipsoid_pitch), in
     3D on the half domain y ≥ 0 (symmetry plane y = 0, which its pitch keeps), free in surge,
-    heave and pitch. On a record of 0.2 s, past the first zero crossing (a quarter period; the
+    heave and pitch. On a record of 0.18 s, past the first zero crossing (a quarter period; the
     whole 3.3 s runs under `make ellipsoid_pitch`): starting at 5° from the equilibrium, the time
     of the first crossing within 5 % of Cummins' model free in the same DoFs, as the roll's
     period (measured 0.1588 s against 0.1601 s, −0.8 %), where the memoir's linear model
     without added inertia crosses 15 % earlier (0.1355 s); the draft within 1 %. (With G
     misplaced on x = 0, the render's error until 2026-12-01, it crossed at 0.1877 s.)"""
-    record = 0.2
+    record = 0.18
     case, theory, motion, info = cfd("ellipsoid_pitch", tmp_path, [f"run.end_time={record}"])
     assert info["mesh"] == "3d-half"
     assert motion["pitch"][0] == pytest.approx(5.0, abs=1e-3)
