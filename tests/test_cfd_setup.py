@@ -149,6 +149,24 @@ def test_a_section_centre_of_mass_is_mid_slab(tmp_path, name):
     assert coeffs["centreOfMass"][0] == pytest.approx(mesh.x_mid, abs=1e-12)
 
 
+@pytest.mark.parametrize("name, solver", [("elliptic_cylinder", "GAMG"), ("stl_pontoon", "GAMG"),
+                                          ("cylinder_heave", "PCG"), ("sphere", "PCG"),
+                                          ("ellipsoid_roll", "PCG")])
+def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
+    """pcorr by GAMG on gmsh's sections and whole tanks, where it measured faster, by the
+    shared PCG elsewhere (render.PCORR_BY_GAMG); the same tolerance either way."""
+    import shutil
+
+    from foamlib import FoamFile
+
+    from floatfoam.layout import COMMON_DIR
+
+    shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
+    render._solution(tmp_path, planned(name)[2])
+    pcorr = FoamFile(tmp_path / "system" / "fvSolution")["solvers"]['"pcorr.*"']
+    assert pcorr["solver"] == solver and pcorr["tolerance"] == 1e-6 and pcorr["relTol"] == 0
+
+
 def test_default_end_time_and_its_refusal():
     """No run.end_time: five periods of the released DoF with the added-mass allowance (roll
     × 1.15); a release whose DoF capsizes has no period to set it from."""
