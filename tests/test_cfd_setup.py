@@ -167,6 +167,36 @@ def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
     assert pcorr["solver"] == solver and pcorr["tolerance"] == 1e-6 and pcorr["relTol"] == 0
 
 
+def test_mesh_made_at_equilibrium(tmp_path):
+    """run.mesh_pose = "equilibrium": G at equilibrium is the six-DoF initial centre of mass
+    and the constraints' centre of rotation (the solver's initial one), G at release its
+    centre of mass; refused for anything but the two poses, a heel or trim release and the
+    O-grid, in one line before anything is written."""
+    from foamlib import FoamFile
+
+    from floatfoam.foam.driver import mesh_pose
+
+    case, state, mesh = planned("lab_sphere", ['run.mesh_pose="equilibrium"'])
+    eq = equilibrium(case)
+    made = mesh_pose(case, state, eq)
+    assert made.z_c == pytest.approx(eq.z_c) and state["mesh_offset"][2] == pytest.approx(
+        case.release["heave"])
+    render._motion(case, tmp_path, mesh, state)
+    coeffs = FoamFile(tmp_path / "constant" / "dynamicMeshDict")["sixDoFRigidBodyMotionCoeffs"]
+    assert coeffs["centreOfMass"][2] == pytest.approx(state["cog"][2])
+    assert coeffs["initialCentreOfMass"][2] == pytest.approx(state["z_G_equilibrium"])
+    assert coeffs["constraints"]["heaveOnly"]["centreOfRotation"][2] == pytest.approx(
+        state["z_G_equilibrium"])
+    with pytest.raises(InputError, match=r"^run.mesh_pose = 'upright': valid is one of "
+                                         r"release, equilibrium$"):
+        load_case("lab_sphere", ['run.mesh_pose="upright"'])
+    for name, says in (("elliptic_cylinder_roll", "heave only"),
+                       ("cylinder_heave", "needs a gmsh mesh")):
+        case, state, _ = planned(name, ['run.mesh_pose="equilibrium"'])
+        with pytest.raises(InputError, match=says):
+            mesh_pose(case, state, equilibrium(case))
+
+
 def test_default_end_time_and_its_refusal():
     """No run.end_time: five periods of the released DoF with the added-mass allowance (roll
     × 1.15); a release whose DoF capsizes has no period to set it from."""

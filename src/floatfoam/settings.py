@@ -42,6 +42,9 @@ def _spec(default, *, kind=float, minimum=None, closed=False, maximum=None, doc=
                                             "maximum": maximum, "doc": doc})
 
 
+MESH_POSES = ("release", "equilibrium")
+
+
 @dataclass(frozen=True)
 class RunSettings:
     """``[run]``: the CFD run (times in s, distances in m)."""
@@ -57,10 +60,16 @@ class RunSettings:
     outer_distance: float | None = _spec(None, minimum=0.0)
     solver: str | None = _spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
     static_body: bool = _spec(False, kind=bool, doc="hold the body still (still-water test)")
+    mesh_pose: str = _spec("release", kind=str, doc="the body's pose the mesh is made at: "
+                           "release, or equilibrium (heave releases; moved to the release "
+                           "before the first step)")
     divergence_courant: float = _spec(20.0, minimum=0.0)
     divergence_body_speed: float = _spec(10.0, minimum=0.0)
 
     def check(self) -> None:
+        if self.mesh_pose not in MESH_POSES:
+            raise InputError(f"run.mesh_pose = {self.mesh_pose!r}: valid is one of "
+                             f"{', '.join(MESH_POSES)}")
         if self.end_time is not None and self.write_interval > self.end_time:
             raise InputError(f"run.write_interval = {self.write_interval:g} > run.end_time = "
                              f"{self.end_time:g}: valid is write_interval ≤ end_time")

@@ -156,14 +156,15 @@ def _distances(case: Case, length: float) -> tuple[float, float]:
 
 
 def generate(mesh: RunMesh, case: Case, level: str, equilibrium, folder: Path, *,
-             local: bool = True) -> RunMesh:
-    """Mesh a gmsh domain into ``folder/domain.msh`` (the body at its release pose); the
-    cell count is checked against this machine's memory when ``local``."""
+             local: bool = True, pose_name: str = "release") -> RunMesh:
+    """Mesh a gmsh domain into ``folder/domain.msh`` (the body at its ``pose_name`` pose:
+    release or equilibrium); the cell count is checked against this machine's memory when
+    ``local``."""
     if mesh.kind == "ogrid":
         return mesh
     from floatfoam.meshing.domains import build_domain
 
-    result = build_domain(case, level, mesh.kind, "release", path=Path(folder) / "domain.msh",
+    result = build_domain(case, level, mesh.kind, pose_name, path=Path(folder) / "domain.msh",
                           equilibrium=equilibrium)
     cells = int(result["cells"])
     _check_memory(cells, level, local, "[mesh.gmsh] sizes (body_cells, growth)")

@@ -134,6 +134,7 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
 
         equilibrium = solve(case)
     state = release_state(case, equilibrium)
+    made_at = mesh_pose(case, state, equilibrium)
     local = hostfile is None
     case = scaled_morphing(case, level, state["pose"], morphing, local=local)
     mesh = domain.plan(case, level, state["pose"], local=local)  # bad input fails here
@@ -143,13 +144,16 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     target = layout.run_dir(case.name, level, build_dir, time_step_divisor=time_step_divisor,
                             morphing=morphing)
     runner.check_path(target)
-    warning = domain.clamped_bottom(mesh, case, state["pose"])
+    warning = domain.clamped_bottom(mesh, case, made_at)
     if warning:
         print(f"[{label}] warning: {warning}", file=sys.stderr)
+    pose_name = case.settings.run.mesh_pose
     with tempfile.TemporaryDirectory(prefix="floatfoam-mesh-") as scratch:
         if mesh.mesher == "gmsh" and (force or not layout.step_done(target, "render")):
-            print(f"[{label}] gmsh: meshing the {mesh.kind} domain", file=sys.stderr)
-            mesh = domain.generate(mesh, case, level, equilibrium, Path(scratch), local=local)
+            print(f"[{label}] gmsh: meshing the {mesh.kind} domain (the body at "
+                  f"{pose_name})", file=sys.stderr)
+            mesh = domain.generate(mesh, case, level, equilibrium, Path(scratch), local=local,
+                                   pose_name=pose_name)
         with RunLock(lock_path(case.name, name, build_dir), label) as lock:
             if lock.stale_holder():
                 print(f"[{label}] the run of PID {lock.stale_holder()} ended without "
@@ -168,11 +172,34 @@ def check_run(case: Case, level: str, np_: int, equilibrium: Equilibrium, *,
     check_morphing(morphing)
     case = smaller_steps(case, time_step_divisor)
     solver_path(case)
-    pose = release_state(case, equilibrium)["pose"]
+    state = release_state(case, equilibrium)
+    mesh_pose(case, state, equilibrium)
+    pose = state["pose"]
     case = scaled_morphing(case, level, pose, morphing)
     domain.plan(case, level, pose, local=True)
     end_time_of(case)
     existing_run(case, level, np_, build_dir, time_step_divisor, morphing)
+
+
+def mesh_pose(case: Case, state: dict, equilibrium: Equilibrium):
+    """The pose the mesh is made at (``[run] mesh_pose``): the release's, or the
+    equilibrium's for a heave release, whose offset to the release then goes in ``state``
+    (``mesh_offset``, m) for the render and the move before the first step
+    (:mod:`floatfoam.foam.meshpose`). Raises InputError for a heel or trim release or the
+    O-grid, which that move does not serve."""
+    if case.settings.run.mesh_pose == "release":
+        return state["pose"]
+    if case.release["heel"] or case.release["trim"]:
+        raise InputError("run.mesh_pose = 'equilibrium' moves the mesh in heave only; valid "
+                         "with a heel or trim release is run.mesh_pose = 'release'")
+    if case.settings.mesh.mesher == "ogrid":
+        raise InputError("run.mesh_pose = 'equilibrium' needs a gmsh mesh; valid with "
+                         "mesh.mesher = 'ogrid' is run.mesh_pose = 'release'")
+    from floatfoam.meshing.levels import pose
+
+    made = pose(case, "equilibrium", equilibrium)
+    state["mesh_offset"] = [0.0, 0.0, float(state["pose"].z_c - made.z_c)]
+    return made
 
 
 def smaller_steps(case: Case, divisor: int) -> Case:
@@ -249,9 +276,12 @@ def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
         shutil.rmtree(run_dir / "0", ignore_errors=True)
         shutil.copytree(run_dir / "0.orig", run_dir / "0")
         layout.mark_done(run_dir, "fields")
-    runner.run_app(run_dir, "setAlphaField", ["setAlphaField"])
-    if np_ > 1:
-        runner.run_app(run_dir, "decomposePar", ["decomposePar", "-force"])
+    if any(info.get("mesh_offset") or ()):
+        to_release_pose(case, run_dir, info, np_, hostfile, label)
+    else:
+        runner.run_app(run_dir, "setAlphaField", ["setAlphaField"])
+        if np_ > 1:
+            runner.run_app(run_dir, "decomposePar", ["decomposePar", "-force"])
     print(f"[{label}] {info['cells']} cells, {np_} rank(s), {info['end_time']:g} s to "
           f"simulate; log: {run_dir / 'log.interFoam'}")
     limits = runner.Limits(max_courant=case.settings.run.divergence_courant,
@@ -275,6 +305,31 @@ def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
 
 
 STALL_FRACTION = 0.01  # of the level's largest time step: below it, the mesh is giving out
+
+
+def to_release_pose(case: Case, run_dir: Path, info: dict, np_: int, hostfile: Path | None,
+                    label: str) -> None:
+    """A mesh made at equilibrium, moved to the release before the first step
+    (:mod:`floatfoam.foam.meshpose`): decomposed first, then the solver started for no step
+    (end time 0, no function objects) writes its scale field, the points move by it, and the
+    water is set on the moved mesh. Each stage runs once (markers)."""
+    from foamlib import FoamFile
+
+    from floatfoam.foam import meshpose
+
+    if np_ > 1:
+        runner.run_app(run_dir, "decomposePar", ["decomposePar", "-force"])
+    if not layout.step_done(run_dir, "releasePose"):
+        control = FoamFile(run_dir / "system" / "controlDict")
+        control["endTime"] = 0
+        runner.run_app(run_dir, "motionScale", [str(solver_path(case)), "-noFunctionObjects"],
+                       np_=np_, hostfile=hostfile, marker=False)
+        control["endTime"] = info["end_time"]
+        moved = meshpose.move_to_release(run_dir, info["mesh_offset"])
+        print(f"[{label}] mesh made at equilibrium: {moved} points moved to the release "
+              f"({info['mesh_offset'][2] * 1000:+.1f} mm)", file=sys.stderr)
+        layout.mark_done(run_dir, "releasePose")
+    runner.run_app(run_dir, "setAlphaField", ["setAlphaField"], np_=np_, hostfile=hostfile)
 
 
 def mesh_line(label: str, info: dict, check: dict) -> str:

@@ -226,6 +226,12 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> None:
         "solver": {"type": "Newmark"},
         "constraints": constraints(case, mesh, cog),
     }
+    offset = np.asarray(state.get("mesh_offset", (0.0, 0.0, 0.0)), dtype=float)
+    if np.any(offset):  # the mesh holds the body at equilibrium (floatfoam.foam.meshpose):
+        made = [c - o for c, o in zip(cog, offset.tolist(), strict=True)]  # G there
+        coeffs["initialCentreOfMass"] = made
+        # the constraints' centre of rotation is the solver's initial one
+        coeffs["constraints"] = constraints(case, mesh, made)
     if not np.allclose(orientation, np.eye(3), atol=1e-15):
         coeffs["orientation"] = [round(float(v), 15) for v in orientation.ravel()]
     write_dict(run_dir / "constant" / "dynamicMeshDict", {

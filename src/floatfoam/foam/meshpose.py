@@ -1,0 +1,95 @@
+"""A mesh made with the body at its equilibrium, moved to the release before the first step
+(``[run] mesh_pose = "equilibrium"``, heave releases).
+
+The six-DoF morphing solver moves every point from the mesh it read first (``points0``) by the
+body's motion since then, scaled by the point's distance from the body (1 within the inner
+distance, a cosine ramp to 0 at the outer one, walls held). A mesh made at the release stays
+deformed by the whole release for as long as the body rests at equilibrium; one made at the
+equilibrium is undeformed there. The second needs the body at its release at t = 0: the
+dynamicMeshDict's ``initialCentreOfMass`` (and the constraints' centre of rotation) is G at
+equilibrium, its ``centreOfMass`` G at release, and the points are moved here as the solver
+would move them, from its own scale field (``motionScale``, written when the solver starts:
+:func:`scale_field`), so its first step does not jump. OpenFOAM v1912,
+src/sixDoFRigidBodyMotion/sixDoFRigidBodyMotion/sixDoFRigidBodyMotion.C, ``transform``: a
+point of scale s moves by s × the translation (s > 1 − SMALL: by all of it; s ≤ SMALL: not)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+SMALL = 1e-15  # OpenFOAM's (double precision)
+
+
+def mesh_dirs(run_dir: Path) -> list[Path]:
+    """The folders holding a mesh the solver reads: ``processor*`` when decomposed, else the
+    run directory."""
+    return sorted(run_dir.glob("processor[0-9]*")) or [run_dir]
+
+
+def held_patches(run_dir: Path) -> list[str]:
+    """The patches whose points the motion holds still (fixedValue in 0.orig's
+    pointDisplacement: the tank's walls and top)."""
+    from foamlib import FoamFile
+
+    boundary = FoamFile(run_dir / "0.orig" / "pointDisplacement")["boundaryField"]
+    return [name for name, entry in boundary.items() if entry.get("type") == "fixedValue"]
+
+
+def _patch_points(mesh: Path, names: list[str]) -> np.ndarray:
+    """The indices of the points on the named patches of the polyMesh folder ``mesh``."""
+    from foamlib import FoamFile
+
+    faces = FoamFile(mesh / "faces")[None]
+    if isinstance(faces, tuple):  # a compact list: offsets and the flat point list
+        offsets, flat = (np.asarray(part) for part in faces)
+
+        def face_points(first, count):
+            return flat[offsets[first]:offsets[first + count]]
+    else:
+        def face_points(first, count):
+            return np.concatenate([np.asarray(f) for f in faces[first:first + count]])
+    found = [np.zeros(0, dtype=int)]
+    for name, patch in FoamFile(mesh / "boundary")[None]:
+        if name in names and int(patch["nFaces"]) > 0:
+            found.append(face_points(int(patch["startFace"]), int(patch["nFaces"])))
+    return np.unique(np.concatenate(found)).astype(int)
+
+
+def write_points(path: Path, points: np.ndarray, name: str) -> None:
+    """An ASCII vectorField of ``points`` at ``path`` (object ``name``), written whole then
+    moved into place."""
+    lines = [f"({x!r} {y!r} {z!r})" for x, y, z in points.tolist()]
+    text = ("FoamFile\n{\n    version 2.0;\n    format ascii;\n    class vectorField;\n"
+            f"    location \"constant/polyMesh\";\n    object {name};\n}}\n\n"
+            f"{len(lines)}\n(\n" + "\n".join(lines) + "\n)\n")
+    part = path.with_name(path.name + ".part")
+    part.write_text(text)
+    part.replace(path)
+    path.with_name(path.name + ".gz").unlink(missing_ok=True)
+
+
+def move_to_release(run_dir: Path, offset: np.ndarray) -> int:
+    """Move each mesh of ``run_dir`` by ``offset`` (m, earth frame) scaled by the solver's
+    ``0/motionScale`` there, its held patches still; the mesh as made becomes ``points0``.
+    Idempotent: the mesh as made is read from ``points0`` when that is already written.
+    Returns the number of points moved."""
+    from foamlib import FoamFieldFile
+
+    held = held_patches(run_dir)
+    moved_count = 0
+    for folder in mesh_dirs(run_dir):
+        mesh = folder / "constant" / "polyMesh"
+        source = mesh / "points0" if (mesh / "points0").is_file() else mesh / "points"
+        made = np.asarray(FoamFieldFile(source)[None], dtype=float).reshape(-1, 3)
+        scale = np.asarray(FoamFieldFile(folder / "0" / "motionScale").internal_field,
+                           dtype=float)
+        scale = np.broadcast_to(scale, (len(made),))
+        share = np.where(scale > 1.0 - SMALL, 1.0, np.where(scale > SMALL, scale, 0.0))
+        share[_patch_points(mesh, held)] = 0.0
+        moved = made + share[:, None] * np.asarray(offset, dtype=float)[None, :]
+        write_points(mesh / "points0", made, "points0")
+        write_points(mesh / "points", moved, "points")
+        moved_count += int(np.count_nonzero(share))
+    return moved_count
