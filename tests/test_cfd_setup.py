@@ -170,8 +170,8 @@ def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
 def test_mesh_made_at_equilibrium(tmp_path):
     """run.mesh_pose = "equilibrium": G at equilibrium is the six-DoF initial centre of mass
     and the constraints' centre of rotation (the solver's initial one), G at release its
-    centre of mass; refused for anything but the two poses, a heel or trim release and the
-    O-grid, in one line before anything is written."""
+    centre of mass; refused for anything but the two poses, a heel or trim release, the
+    O-grid and a body held still, in one line before anything is written."""
     from foamlib import FoamFile
 
     from floatfoam.foam.driver import mesh_pose
@@ -190,9 +190,10 @@ def test_mesh_made_at_equilibrium(tmp_path):
     with pytest.raises(InputError, match=r"^run.mesh_pose = 'upright': valid is one of "
                                          r"release, equilibrium$"):
         load_case("lab_sphere", ['run.mesh_pose="upright"'])
-    for name, says in (("elliptic_cylinder_roll", "heave only"),
-                       ("cylinder_heave", "needs a gmsh mesh")):
-        case, state, _ = planned(name, ['run.mesh_pose="equilibrium"'])
+    for name, extra, says in (("elliptic_cylinder_roll", [], "heave only"),
+                              ("cylinder_heave", [], "needs a gmsh mesh"),
+                              ("lab_sphere", ["run.static_body=true"], "static_body = true")):
+        case, state, _ = planned(name, ['run.mesh_pose="equilibrium"', *extra])
         with pytest.raises(InputError, match=says):
             mesh_pose(case, state, equilibrium(case))
 

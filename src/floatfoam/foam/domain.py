@@ -46,7 +46,8 @@ class RunMesh:
         domain decomposition)
     inner, outer : six-DoF morphing distances from the body (rigid inside, fixed beyond)
     ogrid : the O-grid (kind "ogrid"); msh : the gmsh file (other kinds, once generated)
-    immersed_error : relative error of the body patch's immersed volume at the release pose
+    immersed_error : relative error of the body patch's immersed volume at the pose the mesh is
+        made at (run.mesh_pose: the release's by default)
     """
 
     kind: str
@@ -111,8 +112,11 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
                    outer=outer)
 
 
-def clamped_bottom(mesh: RunMesh, case: Case, release: Pose) -> str | None:
-    """A sentence when the morphing zone reaches past the tank's bottom, else None.
+def clamped_bottom(mesh: RunMesh, case: Case, release: Pose,
+                   made_at: str = "release") -> str | None:
+    """A sentence when the morphing zone reaches past the tank's bottom, else None: the
+    distances are those of the mesh as made, with the body at ``release``, the pose named
+    ``made_at`` (release, or equilibrium: ``run.mesh_pose``).
 
     The bottom's points are clamped (fixedValue displacement) while the points just above it
     still move with the six-DoF scale of their distance from the body, so the bottom's first
@@ -130,7 +134,8 @@ def clamped_bottom(mesh: RunMesh, case: Case, release: Pose) -> str | None:
     if mesh.outer - clearance <= 0.01 * (mesh.outer - mesh.inner):
         return None
     return (f"run.outer_distance = {mesh.outer:g} m reaches past the tank's bottom, "
-            f"{clearance:.3g} m below the body at release: the clamped bottom's first cell "
+            f"{clearance:.3g} m below the body at {made_at}, where its mesh is made: the "
+            f"clamped bottom's first cell "
             f"layer takes the rest of the motion and may collapse on a finer mesh (an outer "
             f"distance of at most {clearance:.3g} m keeps the bottom out of the zone)")
 

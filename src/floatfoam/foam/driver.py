@@ -6,6 +6,10 @@ stopped; the solver restarts from its last written time):
     render → gmshToFoam, patchTypes, checkMesh (or blockMesh) → fields → setAlphaField →
     [decomposePar] → interFoam → finished
 
+A mesh made at equilibrium (``[run] mesh_pose``, :func:`to_release_pose`) instead runs
+fields → [decomposePar] → releasePose (the solver for no step, the points moved) →
+setAlphaField [and setAlphaFieldParallel] → interFoam.
+
 A gmsh mesh (:mod:`floatfoam.foam.domain`) is generated before the run directory is touched, in
 a scratch folder, so that a mesh too large for this machine is refused before anything is
 written.
@@ -144,7 +148,7 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     target = layout.run_dir(case.name, level, build_dir, time_step_divisor=time_step_divisor,
                             morphing=morphing)
     runner.check_path(target)
-    warning = domain.clamped_bottom(mesh, case, made_at)
+    warning = domain.clamped_bottom(mesh, case, made_at, case.settings.run.mesh_pose)
     if warning:
         print(f"[{label}] warning: {warning}", file=sys.stderr)
     pose_name = case.settings.run.mesh_pose
@@ -192,6 +196,10 @@ def mesh_pose(case: Case, state: dict, equilibrium: Equilibrium):
     if case.release["heel"] or case.release["trim"]:
         raise InputError("run.mesh_pose = 'equilibrium' moves the mesh in heave only; valid "
                          "with a heel or trim release is run.mesh_pose = 'release'")
+    if case.settings.run.static_body:
+        raise InputError("run.mesh_pose = 'equilibrium' moves the mesh with the six-DoF "
+                         "solver; valid with run.static_body = true is run.mesh_pose = "
+                         "'release'")
     if case.settings.mesh.mesher == "ogrid":
         raise InputError("run.mesh_pose = 'equilibrium' needs a gmsh mesh; valid with "
                          "mesh.mesher = 'ogrid' is run.mesh_pose = 'release'")
@@ -322,14 +330,20 @@ def to_release_pose(case: Case, run_dir: Path, info: dict, np_: int, hostfile: P
     if not layout.step_done(run_dir, "releasePose"):
         control = FoamFile(run_dir / "system" / "controlDict")
         control["endTime"] = 0
-        runner.run_app(run_dir, "motionScale", [str(solver_path(case)), "-noFunctionObjects"],
-                       np_=np_, hostfile=hostfile, marker=False)
-        control["endTime"] = info["end_time"]
+        try:
+            runner.run_app(run_dir, "motionScale", [str(solver_path(case)),
+                                                    "-noFunctionObjects"],
+                           np_=np_, hostfile=hostfile, marker=False)
+        finally:
+            control["endTime"] = info["end_time"]
         moved = meshpose.move_to_release(run_dir, info["mesh_offset"])
         print(f"[{label}] mesh made at equilibrium: {moved} points moved to the release "
               f"({info['mesh_offset'][2] * 1000:+.1f} mm)", file=sys.stderr)
         layout.mark_done(run_dir, "releasePose")
-    runner.run_app(run_dir, "setAlphaField", ["setAlphaField"], np_=np_, hostfile=hostfile)
+    runner.run_app(run_dir, "setAlphaField", ["setAlphaField"])  # the whole case's, for a
+    if np_ > 1:  # reconstruction; the ranks' own on their moved meshes
+        runner.run_app(run_dir, "setAlphaFieldParallel", ["setAlphaField"], np_=np_,
+                       hostfile=hostfile, log_name="setAlphaField.parallel")
 
 
 def mesh_line(label: str, info: dict, check: dict) -> str:

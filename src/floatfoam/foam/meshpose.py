@@ -8,8 +8,8 @@ deformed by the whole release for as long as the body rests at equilibrium; one 
 equilibrium is undeformed there. The second needs the body at its release at t = 0: the
 dynamicMeshDict's ``initialCentreOfMass`` (and the constraints' centre of rotation) is G at
 equilibrium, its ``centreOfMass`` G at release, and the points are moved here as the solver
-would move them, from its own scale field (``motionScale``, written when the solver starts:
-:func:`scale_field`), so its first step does not jump. OpenFOAM v1912,
+would move them, from its own scale field (``motionScale``, written when the solver starts),
+so its first step does not jump. OpenFOAM v1912,
 src/sixDoFRigidBodyMotion/sixDoFRigidBodyMotion/sixDoFRigidBodyMotion.C, ``transform``: a
 point of scale s moves by s × the translation (s > 1 − SMALL: by all of it; s ≤ SMALL: not)."""
 
@@ -70,26 +70,61 @@ def write_points(path: Path, points: np.ndarray, name: str) -> None:
     path.with_name(path.name + ".gz").unlink(missing_ok=True)
 
 
-def move_to_release(run_dir: Path, offset: np.ndarray) -> int:
-    """Move each mesh of ``run_dir`` by ``offset`` (m, earth frame) scaled by the solver's
-    ``0/motionScale`` there, its held patches still; the mesh as made becomes ``points0``.
-    Idempotent: the mesh as made is read from ``points0`` when that is already written.
-    Returns the number of points moved."""
+def _made(mesh: Path) -> np.ndarray:
+    """The points of the polyMesh folder ``mesh`` as made: ``points0`` once written."""
     from foamlib import FoamFieldFile
 
+    source = mesh / "points0" if (mesh / "points0").is_file() else mesh / "points"
+    return np.asarray(FoamFieldFile(source)[None], dtype=float).reshape(-1, 3)
+
+
+def _share(folder: Path, held: list[str]) -> np.ndarray:
+    """The share of the offset each point of the mesh in ``folder`` moves by: its scale
+    (0 at or below SMALL, 1 above 1 − SMALL), 0 on the held patches."""
+    from foamlib import FoamFieldFile
+
+    mesh = folder / "constant" / "polyMesh"
+    count = len(_made(mesh))
+    scale = np.asarray(FoamFieldFile(folder / "0" / "motionScale").internal_field, dtype=float)
+    scale = np.broadcast_to(scale, (count,))
+    share = np.where(scale > 1.0 - SMALL, 1.0, np.where(scale > SMALL, scale, 0.0))
+    share[_patch_points(mesh, held)] = 0.0
+    return share
+
+
+def move_to_release(run_dir: Path, offset) -> int:
+    """Move each mesh of ``run_dir`` by ``offset`` (m, earth frame) scaled by the solver's
+    ``0/motionScale`` there, its held patches still; the mesh as made becomes ``points0``.
+
+    Decomposed, a point the ranks share takes the largest share any of them gives it, as the
+    solver's ``pointConstraints::constrainDisplacement`` does (``maxMagSqrEqOp``: a wall point
+    of one rank that is no wall point of another moves); the whole case's mesh is moved too,
+    from the ranks' points (``pointProcAddressing``), for a reconstruction. Idempotent: the
+    mesh as made is read from ``points0`` when that is already written. Returns the number of
+    the whole mesh's points that move."""
+    from foamlib import FoamFile
+
     held = held_patches(run_dir)
-    moved_count = 0
-    for folder in mesh_dirs(run_dir):
-        mesh = folder / "constant" / "polyMesh"
-        source = mesh / "points0" if (mesh / "points0").is_file() else mesh / "points"
-        made = np.asarray(FoamFieldFile(source)[None], dtype=float).reshape(-1, 3)
-        scale = np.asarray(FoamFieldFile(folder / "0" / "motionScale").internal_field,
-                           dtype=float)
-        scale = np.broadcast_to(scale, (len(made),))
-        share = np.where(scale > 1.0 - SMALL, 1.0, np.where(scale > SMALL, scale, 0.0))
-        share[_patch_points(mesh, held)] = 0.0
-        moved = made + share[:, None] * np.asarray(offset, dtype=float)[None, :]
-        write_points(mesh / "points0", made, "points0")
-        write_points(mesh / "points", moved, "points")
-        moved_count += int(np.count_nonzero(share))
-    return moved_count
+    offset = np.asarray(offset, dtype=float)
+    folders = mesh_dirs(run_dir)
+    if folders == [run_dir]:
+        share = _share(run_dir, held)
+    else:
+        share = np.zeros(len(_made(run_dir / "constant" / "polyMesh")))
+        addressing = {}
+        for folder in folders:
+            address = np.asarray(FoamFile(folder / "constant" / "polyMesh" /
+                                          "pointProcAddressing")[None], dtype=int)
+            addressing[folder] = address
+            np.maximum.at(share, address, _share(folder, held))
+        for folder in folders:
+            _write(folder / "constant" / "polyMesh", share[addressing[folder]], offset)
+    _write(run_dir / "constant" / "polyMesh", share, offset)
+    return int(np.count_nonzero(share))
+
+
+def _write(mesh: Path, share: np.ndarray, offset: np.ndarray) -> None:
+    """``points0`` (the mesh as made), then ``points`` moved by ``share`` × ``offset``."""
+    made = _made(mesh)
+    write_points(mesh / "points0", made, "points0")
+    write_points(mesh / "points", made + share[:, None] * offset[None, :], "points")

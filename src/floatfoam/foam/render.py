@@ -202,7 +202,8 @@ def constraints(case: Case, mesh: RunMesh, cog: list[float]) -> dict:
 def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> None:
     """Six-DoF body: the domain holds the share s of the body (a slab t/L, a wedge θ/360°),
     mass s·M and inertia s·M·k² about the body's axes; its initial orientation is its attitude
-    at release, so the reported orientation is the body's attitude (the mesh is made there)."""
+    at release, so the reported orientation is the body's attitude. A mesh made at
+    equilibrium (``state["mesh_offset"]``) gets G there as the initial centre of mass."""
     if case.settings.run.static_body:  # body held at its release position (still-water test)
         write_dict(run_dir / "constant" / "dynamicMeshDict", {"dynamicFvMesh": "staticFvMesh"})
         return
