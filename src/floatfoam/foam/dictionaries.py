@@ -23,6 +23,18 @@ def write_dict(path: Path, entries: dict, cls: str = "dictionary") -> None:
             dictionary[key] = value
 
 
+def write_list(path: Path, values, cls: str) -> None:
+    """Write ``values`` (a list or array) as the whole body of a new OpenFOAM file of class
+    ``cls`` (a mesh's ``points``), whole or not at all: written beside it, then moved in."""
+    path = Path(path)
+    part = path.with_name(path.name + ".part")
+    part.write_text("")
+    with FoamFile(part) as file:
+        file["FoamFile"] = {"version": 2.0, "format": "ascii", "class": cls, "object": path.name}
+        file[None] = values
+    part.replace(path)
+
+
 def write_field(path: Path, cls: str, dimensions, internal, boundary: dict) -> None:
     """Write a new field file: its class, dimensions, uniform internal value and patches."""
     path = Path(path)

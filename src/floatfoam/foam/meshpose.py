@@ -57,19 +57,6 @@ def _patch_points(mesh: Path, names: list[str]) -> np.ndarray:
     return np.unique(np.concatenate(found)).astype(int)
 
 
-def write_points(path: Path, points: np.ndarray, name: str) -> None:
-    """An ASCII vectorField of ``points`` at ``path`` (object ``name``), written whole then
-    moved into place."""
-    lines = [f"({x!r} {y!r} {z!r})" for x, y, z in points.tolist()]
-    text = ("FoamFile\n{\n    version 2.0;\n    format ascii;\n    class vectorField;\n"
-            f"    location \"constant/polyMesh\";\n    object {name};\n}}\n\n"
-            f"{len(lines)}\n(\n" + "\n".join(lines) + "\n)\n")
-    part = path.with_name(path.name + ".part")
-    part.write_text(text)
-    part.replace(path)
-    path.with_name(path.name + ".gz").unlink(missing_ok=True)
-
-
 def _made(mesh: Path) -> np.ndarray:
     """The points of the polyMesh folder ``mesh`` as made: ``points0`` once written."""
     from foamlib import FoamFieldFile
@@ -124,7 +111,11 @@ def move_to_release(run_dir: Path, offset) -> int:
 
 
 def _write(mesh: Path, share: np.ndarray, offset: np.ndarray) -> None:
-    """``points0`` (the mesh as made), then ``points`` moved by ``share`` × ``offset``."""
+    """``points0`` (the mesh as made), then ``points`` moved by ``share`` × ``offset``; a
+    points0 whose class is not vectorField the solver ignores, and falls back to points."""
+    from floatfoam.foam.dictionaries import write_list
+
     made = _made(mesh)
-    write_points(mesh / "points0", made, "points0")
-    write_points(mesh / "points", made + share[:, None] * offset[None, :], "points")
+    for name, points in (("points0", made), ("points", made + share[:, None] * offset[None, :])):
+        write_list(mesh / name, points, "vectorField")
+        (mesh / f"{name}.gz").unlink(missing_ok=True)
