@@ -102,10 +102,11 @@ def analysed(motion, name: str) -> dict:
 
 
 # make test's time step for the 2D sections: Courant 1 in the bulk and 0.5 at the interface (as
-# the 3D cases and the capsizing ellipse run; the sections' own runs hold 0.5 everywhere), steps
-# up to 10 ms. On the sections the bulk Courant number, not the interface's, held the step: the
-# air's spurious currents above the free surface (cases/box_bilge/README.md). Measured on the
-# cases' whole coarse records, against their own steps (2 ranks, 2026-12-01): 38–55 % fewer
+# the 3D cases, the capsizing ellipse and, since 2026-12-02, box_bilge's roll run; the other
+# sections' own runs hold 0.5 everywhere), steps up to 10 ms. On the sections the bulk Courant
+# number, not the interface's, held the step: the air's spurious currents above the free
+# surface (cases/box_bilge/README.md). Measured on the cases' whole coarse records, against
+# Courant 0.5 everywhere (2 ranks, 2026-12-01): 38–55 % fewer
 # steps and solver time (box_bilge roll 1,181 → 732 steps, clock 180 → 103 s; elliptic heave
 # 577 → 301, 63 → 33 s); the periods the tests check moved by at most 0.9 % (the heave periods
 # from the extrema: box +0.76 %, ellipse +0.88 %, parabola +0.04 %; the roll T_d: box +0.01 %,
@@ -159,7 +160,7 @@ def test_section_roll(tmp_path, name):
     within 5 % of Cummins' model free in the same DoFs (the potential-flow added inertia and
     its sway–roll coupling), G's sway with it, the motion stable over the record, the body
     back at its equilibrium draft within 1 %. Measured on the cases' whole records (5 periods,
-    their own step): ellipse 0.8566 s against 0.8464 s (+1.2 %), box 1.4227 s against 1.4459 s
+    their own step): ellipse 0.8566 s against 0.8464 s (+1.2 %), box 1.4229 s against 1.4459 s
     (−1.6 %), hyperbola 0.9084 s against 0.9080 s (+0.0 %); on make test's records and step:
     +1.2 %, −1.7 % and −0.3 %. The roll-only model about G gave 0.8683, 1.4458 and 0.9473 s
     (−1.3, −1.6, −4.1 %) and twice the CFD's damping ratio on the ellipse and hyperbola."""
