@@ -22,7 +22,7 @@ CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cy
 	ellipsoid_roll ellipsoid_pitch ellipsoid ellipsoid_printed_verdict stl_pontoon superellipsoid_buoy lab_sphere \
 	lab_sphere_03D lab_sphere_05D \
 	flume_section_roll flume_section_heave
-.PHONY: $(CFD_CASES) help setup run test mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures bench-theory bench-potential bench-cfd clean
+.PHONY: $(CFD_CASES) help setup run test test-extended mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures bench-theory bench-potential bench-cfd clean
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
@@ -39,7 +39,10 @@ $(CFD_CASES): setup
 	$(FF) run $@ --level $(LEVEL) --np $(NP) $(SETARGS)
 
 test: setup  ## all tests: unit tests and the coarse OpenFOAM regression runs
-	$(PY) -m pytest -q --durations=15  # the slowest fifteen: make test must stay ≤ 20 min on 2 cores
+	$(PY) -m pytest -q -m "not extended" --durations=15  # the slowest fifteen: make test must stay ≤ 20 min on 2 cores
+
+test-extended: setup  ## the CFD checks beyond make test's 20 minutes (the 3D pitch decay, ~1 min)
+	$(PY) -m pytest -q -m extended --durations=5
 
 test-fast: setup  ## unit tests only (no solver runs)
 	$(PY) -m pytest -q -m "not openfoam and not slow"

@@ -19,6 +19,7 @@ if [ -x "$BIN" ] && [ "$(cat "$STAMP" 2>/dev/null)" = "$FLAGS" ]; then
   exit 0
 fi
 mkdir -p "$OUT/download" "$OUT/bin"
+rm -f "$STAMP"  # written again after the link: a build cut short is never taken for a whole one
 
 TARBALL=$OUT/download/openfoam_1912.200626.orig.tar.bz2
 if [ ! -f "$TARBALL" ]; then
@@ -29,11 +30,14 @@ if [ ! -f "$TARBALL" ]; then
     apt-get update -qq
   fi
   echo "build_solver: downloading Debian's openfoam source package"
-  (cd "$OUT/download" && apt-get source --download-only -qq -o APT::Sandbox::User=root openfoam=1912.200626-1)
+  # into a scratch folder, moved in whole: a download cut short is never taken for the tarball
+  rm -rf "$OUT/download.part" && mkdir -p "$OUT/download.part"
+  (cd "$OUT/download.part" && apt-get source --download-only -qq -o APT::Sandbox::User=root openfoam=1912.200626-1)
+  mv "$OUT"/download.part/* "$OUT/download/" && rmdir "$OUT/download.part"
 fi
 
 SRC=$OUT/source
-if [ ! -d "$SRC/src/OpenFOAM" ]; then
+if [ ! -f "$SRC/.unpacked" ]; then  # marked when whole: an unpacking cut short starts again
   echo "build_solver: unpacking the library headers and the interFoam sources"
   rm -rf "$SRC" && mkdir -p "$SRC"
   tar -xjf "$TARBALL" -C "$SRC" --strip-components=1 \
@@ -47,6 +51,7 @@ if [ ! -d "$SRC/src/OpenFOAM" ]; then
       \( -name '*.H' -o -name '*.C' -o -name '*.h' \) -print0 |
       xargs -0 -I{} ln -sfr {} "$lib/lnInclude/"
   done
+  touch "$SRC/.unpacked"
 fi
 
 S=$(realpath "$SRC/src")

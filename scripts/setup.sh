@@ -22,6 +22,28 @@ if [ -n "$missing" ]; then
   apt-get install -y -qq --no-install-recommends $missing >/dev/null
 fi
 
+# interFoam rebuilt without the GCC 12 vectoriser bug of Debian's binary (docs/openfoam-v1912.md),
+# beside the Python install: one core compiles (and downloads and unpacks the sources) while the
+# other unpacks the wheels. Each runs in a session of its own, waited for in the background so
+# that an error, SIGINT or SIGTERM here stops both, with everything they started, at once.
+groups=""
+stop_groups() {
+  local group
+  for group in $groups; do kill -- -"$group" 2>/dev/null || true; done
+}
+in_background() {  # run "$@" as a session of its own; wait for it (its exit status)
+  setsid "$@" &
+  groups="$groups $!"
+  wait "$!"
+}
+trap stop_groups EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
+
+setsid bash scripts/build_solver.sh &
+solver=$!
+groups="$solver"
+
 PYTHON=${PYTHON:-python3}
 if [ ! -x .venv/bin/python ]; then
   echo "setup: creating .venv"
@@ -31,10 +53,10 @@ stamp=.venv/.floatfoam-deps
 want=$(sha256sum pyproject.toml | cut -d' ' -f1)
 if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   echo "setup: installing Python dependencies (pinned in pyproject.toml)"
-  .venv/bin/python -m pip install -q --upgrade pip
-  .venv/bin/python -m pip install -q -e ".[dev]"
+  in_background .venv/bin/python -m pip install -q --upgrade pip
+  in_background .venv/bin/python -m pip install -q -e ".[dev]"
   echo "$want" > "$stamp"
 fi
 
-# interFoam rebuilt without the GCC 12 vectoriser bug of Debian's binary (docs/openfoam-v1912.md).
-bash scripts/build_solver.sh
+wait "$solver"
+trap - EXIT
