@@ -2,9 +2,10 @@
 tests/test_cfd.py): the step and the measured changes it makes, in one place."""
 
 # Courant 1 in the bulk and 0.5 at the interface (as the 3D cases, the capsizing ellipse and,
-# since 2026-12-02, box_bilge's roll run; the other cases' own runs hold 0.5 everywhere), steps
-# up to 10 ms. On the sections the bulk Courant number, not the interface's, held the step: the
-# air's spurious currents above the free surface (cases/box_bilge/README.md).
+# since 2026-12-02, box_bilge's and elliptic_cylinder_roll's runs; the other cases' own runs
+# hold 0.5 everywhere), steps up to 10 ms. On the sections the bulk Courant number, not the
+# interface's, held the step: the air's spurious currents above the free surface
+# (cases/box_bilge/README.md).
 #
 # Measured on the 2D sections' whole coarse records, against Courant 0.5 everywhere (2 ranks,
 # 2026-12-01): 38–55 % fewer steps and solver time (box_bilge roll 1,181 → 732 steps, clock

@@ -147,7 +147,7 @@ def test_section_roll(tmp_path, name):
     within 5 % of Cummins' model free in the same DoFs (the potential-flow added inertia and
     its sway–roll coupling), G's sway with it, the motion stable over the record, the body
     back at its equilibrium draft within 1 %. Measured on the cases' whole records (5 periods,
-    their own step): ellipse 0.8566 s against 0.8464 s (+1.2 %), box 1.4229 s against 1.4459 s
+    their own step): ellipse 0.8560 s against 0.8464 s (+1.1 %), box 1.4229 s against 1.4459 s
     (−1.6 %), hyperbola 0.9084 s against 0.9080 s (+0.0 %); on make test's records and step:
     +1.2 %, −1.7 % and −0.3 %. The roll-only model about G gave 0.8683, 1.4458 and 0.9473 s
     (−1.3, −1.6, −4.1 %) and twice the CFD's damping ratio on the ellipse and hyperbola."""
