@@ -38,7 +38,7 @@ run: setup  ## main job: the default case (Ito cylinder) at the coarse level, wi
 $(CFD_CASES): setup
 	$(FF) run $@ --level $(LEVEL) --np $(NP) $(SETARGS)
 
-test: setup  ## all tests: unit tests and the coarse OpenFOAM regression runs
+test: setup  ## all tests but the extended ones (make test-extended): unit tests and the coarse OpenFOAM regression runs
 	$(PY) -m pytest -q -m "not extended" --durations=15  # the slowest fifteen: make test must stay ≤ 20 min on 2 cores
 
 test-extended: setup  ## the CFD checks beyond make test's 20 minutes (the 3D pitch decay, ~1 min)

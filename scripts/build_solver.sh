@@ -9,7 +9,7 @@
 #
 # Output: build/solver/bin/interFoam. Idempotent: does nothing when the binary is there and
 # was built from the same flags. Needs root for apt (a deb-src entry for Debian bookworm).
-set -eu
+set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=build/solver
 BIN=$OUT/bin/interFoam
@@ -22,6 +22,12 @@ mkdir -p "$OUT/download" "$OUT/bin"
 rm -f "$STAMP"  # written again after the link: a build cut short is never taken for a whole one
 
 TARBALL=$OUT/download/openfoam_1912.200626.orig.tar.bz2
+# its SHA-256 as Debian's openfoam_1912.200626-1.dsc gives it: a damaged file is fetched again
+SHA256=c75ca0f04cc4f49708296c1926cbde9d0138b3fef298fed54270dfe29e2df404
+if [ -f "$TARBALL" ] && ! echo "$SHA256  $TARBALL" | sha256sum -c --status; then
+  echo "build_solver: $TARBALL is damaged (its SHA-256 is not Debian's); fetching it again"
+  rm -f "$TARBALL"
+fi
 if [ ! -f "$TARBALL" ]; then
   sources=/etc/apt/sources.list.d/floatfoam-src.sources
   if [ ! -f "$sources" ]; then
@@ -33,7 +39,7 @@ if [ ! -f "$TARBALL" ]; then
   # into a scratch folder, moved in whole: a download cut short is never taken for the tarball
   rm -rf "$OUT/download.part" && mkdir -p "$OUT/download.part"
   (cd "$OUT/download.part" && apt-get source --download-only -qq -o APT::Sandbox::User=root openfoam=1912.200626-1)
-  mv "$OUT"/download.part/* "$OUT/download/" && rmdir "$OUT/download.part"
+  mv "$OUT"/download.part/* "$OUT/download/" && rm -rf "$OUT/download.part"
 fi
 
 SRC=$OUT/source
@@ -72,6 +78,7 @@ echo "build_solver: compiling interFoam with -fno-tree-vectorize (about a minute
 (cd "$app" && g++ $FLAGS -I. -I../VoF -I"$S/transportModels" $includes -c interFoam.C \
    -o "$(realpath -m "$OLDPWD/$OUT/interFoam.o")")
 # shellcheck disable=SC2086
-g++ -m64 "$OUT/interFoam.o" -L/lib -Xlinker --add-needed -Xlinker --no-as-needed $libs -o "$BIN"
+g++ -m64 "$OUT/interFoam.o" -L/lib -Xlinker --add-needed -Xlinker --no-as-needed $libs -o "$BIN.tmp"
+mv -f "$BIN.tmp" "$BIN"  # whole or not at all: the driver runs whatever file is there
 echo "$FLAGS" > "$STAMP"
 echo "build_solver: $BIN"

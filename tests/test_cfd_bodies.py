@@ -150,7 +150,7 @@ def test_section_roll(tmp_path, name):
     their own step): ellipse 0.8560 s against 0.8464 s (+1.1 %), box 1.4229 s against 1.4459 s
     (−1.6 %), hyperbola 0.9084 s against 0.9080 s (+0.0 %); on make test's records and step:
     +1.2 %, −1.7 % and −0.3 %. The roll-only model about G gave 0.8683, 1.4458 and 0.9473 s
-    (−1.3, −1.6, −4.1 %) and twice the CFD's damping ratio on the ellipse and hyperbola."""
+    (−1.4, −1.6, −4.1 %) and twice the CFD's damping ratio on the ellipse and hyperbola."""
     case, theory, motion, info = cfd(name, tmp_path,
                                      [f"run.end_time={ROLL_RECORDS[name]}", *FAST_STEP])
     assert motion["roll"][0] == pytest.approx(case.release["heel"], abs=1e-3)  # from equilibrium
