@@ -24,33 +24,17 @@ fi
 
 # interFoam rebuilt without the GCC 12 vectoriser bug of Debian's binary (docs/openfoam-v1912.md),
 # beside the Python install: one core compiles (and downloads and unpacks the sources) while the
-# other unpacks the wheels. Each runs in a session of its own, waited for in the background, so
-# that an error, SIGINT or SIGTERM here stops both, with everything they started, and waits for
-# them before this script ends (a failed build is seen at its final wait, after pip). Being
-# sessions of their own, a SIGKILL of this script (or of make's process group) does not reach
-# them. Job control off: a background job is then never a group leader, so setsid does not fork
-# and $! is the new session's process group.
-set +m
-groups=""
-stop_groups() {
-  local group
-  for group in $groups; do kill -- -"$group" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-}
-in_background() {  # run "$@" as a session of its own; wait for it (its exit status)
-  local pid rc=0
-  setsid "$@" &
-  pid=$!
-  groups="$groups $pid"
-  wait "$pid" || rc=$?
-  groups=${groups% "$pid"}  # done: its number may be another process's later
-  return "$rc"
-}
+# other unpacks the wheels. Each runs in a session of its own (scripts/sessions.sh), so that an
+# error, SIGINT or SIGTERM here stops both, with everything they started, and waits for them
+# before this script ends (a failed build is seen at its final wait, after pip); a SIGKILL here
+# ends them within a second.
+# shellcheck source=scripts/sessions.sh
+. scripts/sessions.sh
 trap stop_groups EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM
 
-setsid bash scripts/build_solver.sh &
+session bash scripts/build_solver.sh &
 solver=$!
 groups="$solver"
 
