@@ -162,9 +162,28 @@ def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
     from floatfoam.layout import COMMON_DIR
 
     shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
-    render._solution(tmp_path, planned(name)[2])
+    case, _, mesh = planned(name)
+    render._solution(case, tmp_path, mesh)
     pcorr = FoamFile(tmp_path / "system" / "fvSolution")["solvers"]['"pcorr.*"']
     assert pcorr["solver"] == solver and pcorr["tolerance"] == 1e-6 and pcorr["relTol"] == 0
+
+
+@pytest.mark.parametrize("scheme, written", [(None, "Euler"), ("Euler", "Euler"),
+                                             ("CrankNicolson 0.9", ("CrankNicolson", 0.9)),
+                                             ("CrankNicolson 1", ("CrankNicolson", 1))])
+def test_time_scheme_reaches_fvschemes(tmp_path, scheme, written):
+    """run.time_scheme sets ddtSchemes' default; without it the shared Euler stays."""
+    import shutil
+
+    from foamlib import FoamFile
+
+    from floatfoam.layout import COMMON_DIR
+
+    shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
+    case, _, mesh = planned("box_bilge", [f'run.time_scheme="{scheme}"'] if scheme else [])
+    render._solution(case, tmp_path, mesh)
+    default = FoamFile(tmp_path / "system" / "fvSchemes")["ddtSchemes"]["default"]
+    assert (tuple(default) if not isinstance(default, str) else default) == written
 
 
 def test_mesh_made_at_equilibrium(tmp_path):

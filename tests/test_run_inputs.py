@@ -83,6 +83,9 @@ def test_body_resolution_bound_names_the_memory():
     (["theory", "superellipsoid_buoy", "--set", "body.bounds=\"x\""], ["body.bounds"]),
     (["run", "cylinder_heave", "--np", "0"], ["--np 0"]),
     (["run", "cylinder_heave", "--hostfile", "/nonexistent"], ["--hostfile"]),
+    (["run", "box_bilge", "--set", 'run.time_scheme="CrankNicolson 2"'],
+     ["run.time_scheme", "0 ≤ ψ ≤ 1"]),
+    (["run", "box_bilge", "--set", 'run.time_scheme="backward"'], ["run.time_scheme", "Euler"]),
 ])
 def test_errors_are_one_line_exit_2(tmp_path, capsys, args, words):
     (tmp_path / "case.toml").write_text("[fluid]\nrho = 1000.0\n")

@@ -587,3 +587,14 @@ def test_the_level_a_3d_heave_record_settles_at(tmp_path):
         (run / layout.MARKERS / "info.json").write_text(json.dumps(info))
         assert settled_level(small, "heave", run, theory) is None  # 16 m²: rise 0.44 %
         assert settled_level(wide, "heave", run, theory) == pytest.approx(expected, rel=1e-9)
+
+
+@pytest.mark.parametrize("scheme, order", [(None, 1.0), ("Euler", 1.0),
+                                           ("CrankNicolson 0.9", 1.0), ("CrankNicolson 1", 2.0)])
+def test_time_study_takes_the_time_schemes_order(scheme, order):
+    """The time-step GCI is Roache's two-grid one at the time scheme's formal order: Euler's 1,
+    Crank–Nicolson's 2 only when it is not blended with Euler (ψ = 1)."""
+    from floatfoam.analysis.validation import time_order
+
+    case = load_case("box_bilge", [f'run.time_scheme="{scheme}"'] if scheme else [])
+    assert time_order(case) == order

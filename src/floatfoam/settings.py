@@ -45,6 +45,23 @@ def _spec(default, *, kind=float, minimum=None, closed=False, maximum=None, doc=
 MESH_POSES = ("release", "equilibrium")
 
 
+def time_scheme_coefficient(scheme: str) -> float | None:
+    """ψ of ``run.time_scheme`` "CrankNicolson ψ", None for "Euler"; anything else refused."""
+    words = scheme.split()
+    if words == ["Euler"]:
+        return None
+    valid = 'valid: "Euler" or "CrankNicolson ψ" with 0 ≤ ψ ≤ 1, e.g. "CrankNicolson 0.9"'
+    if len(words) != 2 or words[0] != "CrankNicolson":
+        raise InputError(f"run.time_scheme = {scheme!r}: {valid}")
+    try:
+        psi = float(words[1])
+    except ValueError:
+        raise InputError(f"run.time_scheme = {scheme!r}: ψ is not a number; {valid}") from None
+    if not 0.0 <= psi <= 1.0:
+        raise InputError(f"run.time_scheme = {scheme!r}: ψ = {psi:g}; {valid}")
+    return psi
+
+
 @dataclass(frozen=True)
 class RunSettings:
     """``[run]``: the CFD run (times in s, distances in m)."""
@@ -65,8 +82,12 @@ class RunSettings:
                            "before the first step)")
     divergence_courant: float = _spec(20.0, minimum=0.0)
     divergence_body_speed: float = _spec(10.0, minimum=0.0)
+    time_scheme: str = _spec("Euler", kind=str, doc="the time derivative's scheme: Euler "
+                             "(first order), or \"CrankNicolson ψ\" with 0 ≤ ψ ≤ 1 (ψ = 1 "
+                             "second order; interFoam's alpha then takes no sub-cycles)")
 
     def check(self) -> None:
+        time_scheme_coefficient(self.time_scheme)
         if self.mesh_pose not in MESH_POSES:
             raise InputError(f"run.mesh_pose = {self.mesh_pose!r}: valid is one of "
                              f"{', '.join(MESH_POSES)}")

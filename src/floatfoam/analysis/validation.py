@@ -18,8 +18,9 @@ the record, :func:`floatfoam.analysis.compare.record_fit`) it gives
   time step by the level's factor, so they refine space **and** time together: a space-time
   GCI, in which spatial and temporal errors of opposite signs can cancel;
 * the time-step study: the medium level against the same with its time steps halved, Roache's
-  two-grid GCI of the medium level's own step with the first order of the Euler time scheme
-  (cases/_common/system/fvSchemes). It is taken for the fine level's time error, expected
+  two-grid GCI of the medium level's own step with the formal order of the time scheme: 1 for
+  the Euler scheme of cases/_common/system/fvSchemes, 2 for ``run.time_scheme =
+  "CrankNicolson 1"`` (:func:`time_order`). It is taken for the fine level's time error, expected
   to be conservative: the fine level's steps are never longer than the medium's (same Courant
   limit on smaller cells, largest step divided by the level factor), and a first-order error
   shrinks with the step — if its constant is about the same on both meshes. Halving the
@@ -64,6 +65,7 @@ from floatfoam.analysis.uncertainty import STUDY_FILE
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.theory import theory_summary
 from floatfoam.jsonfile import dump_json
+from floatfoam.settings import time_scheme_coefficient
 
 TIME_STEP_DIVISOR = 2
 #: the level whose time steps are halved by default (module docstring: why); "fine" gives the
@@ -95,6 +97,12 @@ def plan(time_level: str = TIME_STEP_LEVEL,
 
 
 TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
+
+
+def time_order(case) -> float:
+    """The formal order of the case's time scheme (``run.time_scheme``): 2 for Crank–Nicolson
+    with ψ = 1, else 1 (Euler; ψ < 1 blends in Euler's first-order error)."""
+    return 2.0 if time_scheme_coefficient(case.settings.run.time_scheme) == 1.0 else TIME_ORDER
 #: the schemes' formal order in space (second: cases/_common/system/fvSchemes; the time error
 #: has its own GCI, below). An observed order beyond twice it says the three levels'
 #: differences are not the power law the extrapolation assumes (two of them agree by chance,
@@ -194,8 +202,9 @@ def grid_study(runs: dict[str, RunValues], key: str) -> gci.GridConvergence | st
 
 
 def time_study(runs: dict[str, RunValues], key: str, time_level: str = TIME_STEP_LEVEL,
-               hint: str = "") -> gci.TwoLevel | str:
-    """``time_level`` against its halved time steps (two_level's "fine" is the halved run)."""
+               hint: str = "", order: float = TIME_ORDER) -> gci.TwoLevel | str:
+    """``time_level`` against its halved time steps (two_level's "fine" is the halved run),
+    at the time scheme's formal ``order``."""
     level = runs.get(time_level)
     halved = runs.get(layout.run_name(time_level, TIME_STEP_DIVISOR))
     if level is None or halved is None:
@@ -203,7 +212,7 @@ def time_study(runs: dict[str, RunValues], key: str, time_level: str = TIME_STEP
     a, b = halved.values.get(key), level.values.get(key)
     if a is None or b is None or not (math.isfinite(a) and math.isfinite(b)):
         return "a record could not be analysed"
-    return gci.two_level(a, b, TIME_STEP_DIVISOR, TIME_ORDER)
+    return gci.two_level(a, b, TIME_STEP_DIVISOR, order)
 
 
 def morphing_study(runs: dict[str, RunValues], key: str, factor: float | None) -> dict:
@@ -262,7 +271,7 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
             if other else "")
     theory = theory_summary(case)
     out = {"case": case.name, "runs": [name for name, _, _, _ in found], "dofs": {},
-           "time_order": TIME_ORDER, "time_step_divisor": TIME_STEP_DIVISOR,
+           "time_order": time_order(case), "time_step_divisor": TIME_STEP_DIVISOR,
            "time_step_level": time_level, "morphing": morphing}
     for dof in excited_dofs(case, {}):
         runs = {name: _run_values(name, k, run, dof, f, settled_level(case, dof, run, theory))
@@ -273,7 +282,8 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
                           for name, r in runs.items()},
                  "quantities": {}}
         for key, _, _ in QUANTITIES:
-            grid, time = grid_study(runs, key), time_study(runs, key, time_level, hint)
+            grid = grid_study(runs, key)
+            time = time_study(runs, key, time_level, hint, time_order(case))
             entry["quantities"][key] = {
                 "grid": grid.as_dict() if not isinstance(grid, str) else {"note": grid},
                 "time": time.as_dict() if not isinstance(time, str) else {"note": time},

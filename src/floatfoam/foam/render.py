@@ -26,6 +26,7 @@ from floatfoam.foam.patches import write_initial_fields
 from floatfoam.hydrostatics.theory import Equilibrium
 from floatfoam.layout import COMMON_DIR
 from floatfoam.meshing.levels import pose
+from floatfoam.settings import time_scheme_coefficient
 
 
 def release_state(case: Case, eq: Equilibrium) -> dict:
@@ -95,7 +96,7 @@ def render(case: Case, level: str, run_dir: Path, state: dict, mesh: RunMesh, *,
     domain.write(mesh, run_dir)
     end_time = end_time_of(case)
     _control(case, run_dir, mesh, end_time)
-    _solution(run_dir, mesh)
+    _solution(case, run_dir, mesh)
     _fluid(case, run_dir)
     _motion(case, run_dir, mesh, state)
     write_initial_fields(run_dir / "0.orig", mesh.patches)
@@ -165,10 +166,15 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
                                       "angleFormat": "degrees"}
 
 
-def _solution(run_dir: Path, mesh: RunMesh) -> None:
-    """pcorr's solver for the mesh's kind (:data:`PCORR_BY_GAMG`)."""
+def _solution(case: Case, run_dir: Path, mesh: RunMesh) -> None:
+    """pcorr's solver for the mesh's kind (:data:`PCORR_BY_GAMG`); the time scheme
+    (``run.time_scheme``: the shared fvSchemes' Euler unless the case names Crank–Nicolson)."""
     if mesh.kind in PCORR_BY_GAMG:
         FoamFile(run_dir / "system" / "fvSolution")["solvers"]['"pcorr.*"'] = PCORR_GAMG
+    psi = time_scheme_coefficient(case.settings.run.time_scheme)
+    if psi is not None:
+        FoamFile(run_dir / "system" / "fvSchemes")["ddtSchemes"]["default"] = ("CrankNicolson",
+                                                                             psi)
 
 
 def _fluid(case: Case, run_dir: Path) -> None:
