@@ -97,12 +97,6 @@ def plan(time_level: str = TIME_STEP_LEVEL,
 
 
 TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
-
-
-def time_order(case) -> float:
-    """The formal order of the case's time scheme (``run.time_scheme``): 2 for Crank–Nicolson
-    with ψ = 1, else 1 (Euler; ψ < 1 blends in Euler's first-order error)."""
-    return 2.0 if time_scheme_coefficient(case.settings.run.time_scheme) == 1.0 else TIME_ORDER
 #: the schemes' formal order in space (second: cases/_common/system/fvSchemes; the time error
 #: has its own GCI, below). An observed order beyond twice it says the three levels'
 #: differences are not the power law the extrapolation assumes (two of them agree by chance,
@@ -115,6 +109,12 @@ QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
               ("damping_ratio", "damping ratio ζ", ""),
               ("first_damping_ratio", "ζ of the first 6 extrema", ""),
               ("first_trough", "first trough below the settled level", "m or rad"))
+
+
+def time_order(case) -> float:
+    """The formal order of the case's time scheme (``run.time_scheme``): 2 for Crank–Nicolson
+    with ψ = 1, else 1 (Euler; ψ < 1 blends in Euler's first-order error)."""
+    return 2.0 if time_scheme_coefficient(case.settings.run.time_scheme) == 1.0 else TIME_ORDER
 
 
 @dataclass
