@@ -14,25 +14,33 @@ from procutil import processes_in
 
 SESSIONS = Path(__file__).resolve().parents[1] / "scripts" / "sessions.sh"
 
-SCRIPT = f"""set -eu
+PREAMBLE = f"""set -eu
 . {SESSIONS}
 trap stop_groups EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM
-session sleep 300 &
-groups="$!"
-echo started
-in_background bash -c "$1"
 """
 
 
-def start(folder: Path, foreground: str) -> subprocess.Popen:
-    """The script in ``folder``: a session sleeping in the background, ``foreground`` (a bash
-    command) as a session waited for; it prints "started" once both are on their way."""
-    driver = subprocess.Popen(["bash", "-c", SCRIPT, "script", foreground], cwd=folder,
+def start(folder: Path, body: str) -> subprocess.Popen:
+    """The preamble and ``body`` as a bash script working in ``folder``; ``body`` prints
+    "started" once its sessions are on their way."""
+    driver = subprocess.Popen(["bash", "-c", PREAMBLE + body], cwd=folder,
                               stdout=subprocess.PIPE, text=True, start_new_session=True)
     assert driver.stdout.readline().strip() == "started"
     return driver
+
+
+def running(folder: Path, command: str) -> list[int]:
+    """The processes in ``folder`` whose command line is ``command``."""
+    found = []
+    for pid in processes_in(folder):
+        try:
+            if Path(f"/proc/{pid}/cmdline").read_text().replace("\0", " ").strip() == command:
+                found.append(pid)
+        except OSError:
+            continue
+    return found
 
 
 def gone(folder: Path, seconds: float) -> bool:
@@ -40,26 +48,64 @@ def gone(folder: Path, seconds: float) -> bool:
     while processes_in(folder):
         if time.monotonic() > deadline:
             return False
-        time.sleep(0.1)
+        time.sleep(0.05)
     return True
 
 
-@pytest.mark.parametrize("sig, code", [(signal.SIGTERM, 143), (signal.SIGKILL, -9)])
-def test_a_stopped_or_killed_script_leaves_no_process(tmp_path, sig, code):
-    driver = start(tmp_path, "sleep 301")
+TWO_SESSIONS = """session sleep 300 &
+groups="$!"
+echo started
+in_background sleep 301
+"""
+
+
+def test_a_stopped_script_stops_its_sessions_at_once(tmp_path):
+    driver = start(tmp_path, TWO_SESSIONS)
     time.sleep(0.5)
-    assert len(processes_in(tmp_path)) >= 3  # the script and its two sleeps at least
-    driver.send_signal(sig)
-    assert driver.wait(timeout=10) == code
-    # SIGTERM: the trap stops the sessions and waits for them; SIGKILL cannot be trapped, the
-    # watchers poll each second whether the script is there
+    assert running(tmp_path, "sleep 300") and running(tmp_path, "sleep 301")
+    driver.send_signal(signal.SIGTERM)
+    assert driver.wait(timeout=10) == 143
+    # the EXIT trap stopped both sessions and waited for them: nothing is left when the
+    # script is gone, well before the watchers' one-second poll would have noticed
+    assert gone(tmp_path, 0.3)
+
+
+def test_a_killed_script_leaves_no_process(tmp_path):
+    driver = start(tmp_path, TWO_SESSIONS)
+    time.sleep(0.5)
+    assert running(tmp_path, "sleep 300") and running(tmp_path, "sleep 301")
+    driver.kill()  # cannot be trapped: the watchers see their sessions' parent gone
     assert gone(tmp_path, 3.0), [Path(f"/proc/{p}/cmdline").read_text() for p in
                                  processes_in(tmp_path)]
+    driver.wait(timeout=10)
 
 
-def test_a_session_gives_its_status_and_leaves_nothing_behind(tmp_path):
-    # the foreground session fails with 7 after leaving a grandchild behind: the script's
-    # `set -e` ends it with that status, and what the session left goes with it
-    driver = start(tmp_path, "sleep 302 & sleep 0.5; exit 7")
+def test_a_finished_session_takes_what_it_left_and_gives_its_status(tmp_path):
+    # the session's job leaves a grandchild behind and succeeds: the grandchild goes with the
+    # session while the script goes on; then a failing session's status ends the script
+    driver = start(tmp_path, """echo started
+in_background bash -c 'sleep 302 & exit 0'
+echo after
+sleep 0.5
+in_background bash -c 'exit 7'
+echo never
+""")
+    assert driver.stdout.readline().strip() == "after"
+    assert not running(tmp_path, "sleep 302")  # before the watcher's second
     assert driver.wait(timeout=10) == 7
-    assert gone(tmp_path, 3.0)
+    assert driver.stdout.read().strip() == ""
+    assert gone(tmp_path, 1.0)
+
+
+def test_session_refuses_the_foreground(tmp_path):
+    # in the foreground it would exec, replacing the script and its EXIT trap
+    proc = subprocess.run(["bash", "-c", f". {SESSIONS}; session true; echo rc=$?"],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=10)
+    assert proc.stdout.strip() == "rc=2" and "in the background" in proc.stderr
+
+
+@pytest.mark.parametrize("job, code", [("sleep 0.2; exit 5", 5), ("kill -TERM $$", 143)])
+def test_a_session_gives_its_jobs_status(tmp_path, job, code):
+    proc = subprocess.run(["bash", "-c", PREAMBLE + f"in_background bash -c '{job}'"],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=10)
+    assert proc.returncode == code

@@ -598,3 +598,15 @@ def test_time_study_takes_the_time_schemes_order(scheme, order):
 
     case = load_case("box_bilge", [f'run.time_scheme="{scheme}"'] if scheme else [])
     assert time_order(case) == order
+
+
+def test_time_gci_takes_the_schemes_order():
+    """Roache's GCI of the level's own step, F_s ε r^p/(r^p − 1): 6ε at p = 1, 4ε at p = 2 for
+    r = 2 (ε = 1 % here), and the study's foot names the order."""
+    from floatfoam.analysis.validation import RunValues, method, time_study
+
+    runs = {"medium": RunValues("medium", 100, 2, values={"period": 1.0}),
+            "medium-dt2": RunValues("medium-dt2", 100, 2, divisor=2, values={"period": 0.99})}
+    assert time_study(runs, "period").gci_coarse == pytest.approx(0.06)
+    assert time_study(runs, "period", order=2.0).gci_coarse == pytest.approx(0.04)
+    assert "second order" in method(order=2.0) and "first order" in method()

@@ -85,8 +85,9 @@ class RunSettings:
     # Crank–Nicolson ψ 0.9 on box_bilge (2026-12-02): diverged at relaxation 0.7, and at 0.4
     # the roll gained energy (cases/box_bilge/README.md); the cases keep Euler
     time_scheme: str = _spec("Euler", kind=str, doc="the time derivative's scheme: Euler "
-                             "(first order), or \"CrankNicolson ψ\" with 0 ≤ ψ ≤ 1 (ψ = 1 "
-                             "second order; interFoam's alpha then takes no sub-cycles)")
+                             "(first order), or \"CrankNicolson ψ\" with 0 ≤ ψ ≤ 1 (second "
+                             "order at ψ = 1; any ψ needs the shared fvSolution's "
+                             "nAlphaSubCycles 1, which interFoam checks)")
 
     def check(self) -> None:
         time_scheme_coefficient(self.time_scheme)

@@ -259,6 +259,7 @@ def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir:
         GCI_HEADER,
         MORPHING_HEADER,
         RUNS_HEADER,
+        TIME_ORDER,
         method,
         morphing_rows,
         study_tables,
@@ -276,8 +277,8 @@ def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir:
         if morphing:
             doc.paragraph(f"{dof}, morphing distances × {study['morphing']:g}:")
             doc.table(MORPHING_HEADER, morphing)
-    doc.paragraph(method(study.get("time_step_level", "fine"), study.get("morphing")),
-                  note=True)
+    doc.paragraph(method(study.get("time_step_level", "fine"), study.get("morphing"),
+                         study.get("time_order", TIME_ORDER)), note=True)
     figure = layout.case_build_dir(case_name, build_dir) / "validation" / "convergence.png"
     if figure.is_file():
         name = f"{case_name}/convergence.png"

@@ -336,8 +336,10 @@ OLDER_STUDY = "not in this study (written before it was added: floatfoam validat
 RUNS_HEADER = ("run", "cells", *(label for _, label, _ in QUANTITIES), "note")
 GCI_HEADER = ("quantity", "convergence", "order p", "extrapolated", "e_a21",
               "GCI_fine (levels)", "Δ with dt/2", "GCI (time)", "U_num", "measured")
-def method(time_level: str = TIME_STEP_LEVEL, morphing: float | None = None) -> str:
-    """How the study's numbers are made, for the foot of its table."""
+def method(time_level: str = TIME_STEP_LEVEL, morphing: float | None = None,
+           order: float = TIME_ORDER) -> str:
+    """How the study's numbers are made, for the foot of its table (``order``: the time
+    scheme's, :func:`time_order`)."""
     bound = ("" if time_level == "fine" else
              ", taken for the fine level's, whose steps are no longer (conservative if the "
              "time error's constant is about the same on both meshes)")
@@ -346,7 +348,8 @@ def method(time_level: str = TIME_STEP_LEVEL, morphing: float | None = None) -> 
             "Courant limit is the same, the largest step shrinks with the cell), so this is a "
             f"space-time GCI. Time alone: the {time_level} level against its time steps "
             f"halved, Roache's two-grid GCI of the {time_level} level's own step (F_s = 3, "
-            f"first order){bound}. U_num = √(GCI_levels² + GCI_time²), the band around the "
+            f"{'first' if order == 1 else 'second' if order == 2 else f'{order:g}'} order)"
+            f"{bound}. U_num = √(GCI_levels² + GCI_time²), the band around the "
             "fine level's value; where the levels' order p is beyond twice the schemes' "
             f"{FORMAL_ORDER:g}, GCI_levels is the fine pair's at order {FORMAL_ORDER:g} with "
             "F_s = 3 (Roache)." + ("" if morphing is None else
@@ -456,7 +459,8 @@ def study_markdown(study: dict) -> str:
             lines += [f"Morphing distances × {study['morphing']:g} at the {MORPHING_LEVEL} "
                       "level:", "", *table(MORPHING_HEADER, morphing)]
     return "\n".join([*lines, method(study.get("time_step_level", "fine"),
-                                     study.get("morphing")), ""])
+                                     study.get("morphing"), study.get("time_order", TIME_ORDER)),
+                       ""])
 
 
 def write_study(study: dict, out_dir: Path) -> list[Path]:
