@@ -270,8 +270,9 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
     hint = (f" ({layout.run_name(other[0], TIME_STEP_DIVISOR)} is: --time-level {other[0]})"
             if other else "")
     theory = theory_summary(case)
+    order = time_order(case)
     out = {"case": case.name, "runs": [name for name, _, _, _ in found], "dofs": {},
-           "time_order": time_order(case), "time_step_divisor": TIME_STEP_DIVISOR,
+           "time_order": order, "time_step_divisor": TIME_STEP_DIVISOR,
            "time_step_level": time_level, "morphing": morphing}
     for dof in excited_dofs(case, {}):
         runs = {name: _run_values(name, k, run, dof, f, settled_level(case, dof, run, theory))
@@ -282,8 +283,7 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
                           for name, r in runs.items()},
                  "quantities": {}}
         for key, _, _ in QUANTITIES:
-            grid = grid_study(runs, key)
-            time = time_study(runs, key, time_level, hint, time_order(case))
+            grid, time = grid_study(runs, key), time_study(runs, key, time_level, hint, order)
             entry["quantities"][key] = {
                 "grid": grid.as_dict() if not isinstance(grid, str) else {"note": grid},
                 "time": time.as_dict() if not isinstance(time, str) else {"note": time},
