@@ -419,6 +419,35 @@ def test_a_study_checks_its_four_runs_before_the_first(tmp_path):
     assert sorted(tmp_path.rglob("*")) == before
 
 
+def test_a_study_is_of_the_settings_its_runs_were_made_with(tmp_path):
+    """Finished runs stamped with the case's settings are analysed (--no-run); the same runs
+    under another --set (a Crank–Nicolson time order the Euler runs did not have) are refused
+    in one line, exit 2, nothing written. A folder without a stamp (made by hand, as the
+    synthetic runs here) is taken as it is."""
+    case = load_case("cylinder_heave")
+    cells = {"coarse": 11280, "medium": 22857, "fine": 45120}
+    for level, divisor, factor in plan():
+        name = layout.run_name(level, divisor, factor)
+        _synthetic_run(tmp_path, name, cells[level], 0.61, 0.1, 0.002)
+        (tmp_path / case.name / name / layout.MARKERS / "settings").write_text(
+            f"{settings_digest(case, level)} 2\n")
+    env = {"FLOATFOAM_BUILD": str(tmp_path), "PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg"}
+    argv = [sys.executable, "-m", "floatfoam.cli", "validate", "cylinder_heave", "--no-run"]
+    before = sorted(tmp_path.rglob("*"))
+    out = subprocess.run([*argv, "--set", "run.time_scheme=CrankNicolson 1"], env=env,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 2 and "other settings" in out.stderr, out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1
+    assert sorted(tmp_path.rglob("*")) == before
+    out = subprocess.run(argv, env=env, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert json.loads((tmp_path / case.name / "validation" / "validation.json").read_text())[
+        "time_order"] == 1.0
+    # unstamped: taken as it is
+    (tmp_path / case.name / "coarse" / layout.MARKERS / "settings").unlink()
+    assert "coarse" in validate_case(case, tmp_path)["runs"]
+
+
 @pytest.mark.parametrize("name", ["lab_sphere", "lab_sphere_03D", "lab_sphere_05D"])
 def test_measured_record_reduces_to_the_papers_first_cycles(name):
     """The measured record beside each laboratory sphere (one of the four drops), reduced as

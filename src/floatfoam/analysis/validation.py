@@ -131,15 +131,21 @@ class RunValues:
     span: float | None = None  # s: the record's length from the release
 
 
-def study_runs(case_name: str, build: Path, time_level: str = TIME_STEP_LEVEL,
+def study_runs(case, build: Path, time_level: str = TIME_STEP_LEVEL,
                morphing: float | None = None) -> list[tuple[str, int, float, Path]]:
     """(name, time-step divisor, morphing factor, run directory) of the study's runs that are
-    finished."""
+    finished. Raises InputError when one was run with other settings than ``case``'s (its case
+    file and ``--set``): the study, its time order among them, is of one set of settings."""
+    from floatfoam.foam.driver import stamped_with
+
     out = []
     for level, divisor, factor in plan(time_level, morphing):
-        run = layout.run_dir(case_name, level, build, time_step_divisor=divisor,
+        run = layout.run_dir(case.name, level, build, time_step_divisor=divisor,
                              morphing=factor)
         if layout.is_finished(run) and (run / "motion.csv").is_file():
+            if stamped_with(case, level, run) is False:
+                raise InputError(f"{run} holds a run of other settings than this command's "
+                                 "(case file, --set); valid: the settings it was run with")
             out.append((layout.run_name(level, divisor, factor), divisor, factor, run))
     return out
 
@@ -264,7 +270,7 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
     finished (:func:`finished_morphing`)."""
     build = Path(build or layout.build_dir())
     morphing = morphing if morphing is not None else finished_morphing(case.name, build)
-    found = study_runs(case.name, build, time_level, morphing)
+    found = study_runs(case, build, time_level, morphing)
     other = [level for level in TIME_STEP_LEVELS if level != time_level and layout.is_finished(
         layout.run_dir(case.name, level, build, time_step_divisor=TIME_STEP_DIVISOR))]
     hint = (f" ({layout.run_name(other[0], TIME_STEP_DIVISOR)} is: --time-level {other[0]})"

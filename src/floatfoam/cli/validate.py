@@ -31,7 +31,8 @@ def register(sub) -> None:
                    "F (1.5, say), which no level changes, and report how much each quantity "
                    "moves with them")
     p.add_argument("--no-run", action="store_true",
-                   help="analyse the finished runs only; run nothing")
+                   help="analyse the finished runs only (made with this command's case file "
+                   "and --set: others are refused); run nothing")
     p.set_defaults(func=run)
 
 

@@ -65,6 +65,18 @@ def settings_digest(case: Case, level: str, *, legacy: bool = False) -> str:
     return digest.hexdigest()[:16]
 
 
+def stamped_with(case: Case, level: str, run_dir: Path) -> bool | None:
+    """Whether the run directory's settings stamp is this case's at ``level`` (either digest);
+    None when it has no stamp (the driver writes it before anything else: a folder without
+    one was not made by a run)."""
+    stamp = run_dir / layout.MARKERS / "settings"
+    if not stamp.exists():
+        return None
+    words = stamp.read_text().split()
+    known = (settings_digest(case, level), settings_digest(case, level, legacy=True))
+    return bool(words) and words[0] in known
+
+
 def solver_path(case: Case) -> Path:
     """The interFoam to run: floatfoam's rebuilt one unless [run] solver names another."""
     path = Path(case.settings.run.solver or layout.SOLVER)
@@ -87,8 +99,7 @@ def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None
     stamp = run_dir / layout.MARKERS / "settings"
     old = (stamp.read_text().split() if stamp.exists() else []) + ["?", "?"]
     finished = layout.is_finished(run_dir)
-    known = (settings_digest(case, level), settings_digest(case, level, legacy=True))
-    if old[0] not in known or old[1] != str(np_):
+    if not stamped_with(case, level, run_dir) or old[1] != str(np_):
         what = "a finished run" if finished else "an unfinished run"
         raise InputError(f"{run_dir} holds {what} with other settings (or --np); valid: "
                          "the same settings to resume, or `floatfoam run` with --force to "
