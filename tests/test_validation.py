@@ -125,7 +125,7 @@ def _synthetic_run(build, name, cells, period, zeta, dt):
     """A run folder holding a synthetic heave record (a damped cosine), marked finished: for
     the analysis of the study only, nothing here came from a solver."""
     run = build / "cylinder_heave" / name
-    (run / layout.MARKERS).mkdir(parents=True)
+    (run / layout.MARKERS).mkdir(parents=True, exist_ok=True)
     (run / layout.MARKERS / "info.json").write_text(json.dumps({"cells": cells, "mesh": "2d"}))
     t = np.arange(0.0, 3.2, dt)
     z = free_decay_curve(t, 0.0, 0.0254, period, zeta)
@@ -389,19 +389,21 @@ def test_potential_flow_first_cycles_beside_the_basins(tmp_path):
                                    rel=0.015)
 
 
-def test_a_run_stamped_before_the_digest_changed_is_still_ours(tmp_path):
-    """Runs stamped with the whole case file's hash (before [reference] and the case's words
-    left the digest) are recognised: finished, they are reused, not refused."""
-    case = load_case("cylinder_heave")
-    run = layout.run_dir(case.name, "coarse", tmp_path)
-    (run / layout.MARKERS).mkdir(parents=True)
-    (run / layout.MARKERS / "settings").write_text(
-        f"{settings_digest(case, 'coarse', legacy=True)} 2\n")
+def test_a_changed_default_makes_a_finished_run_foreign(tmp_path):
+    """The stamp holds the values the case file resolves to, defaults included: a finished
+    run made at relaxation 0.7 (the default until 2026-12-02, not written in the case file)
+    is refused, not reused as a run of today's 1.0; the same run at 1.0 is reused."""
+    case = load_case("box_bilge")
+    assert "acceleration_relaxation" not in case.raw.get("run", {})
+    old = dataclasses.replace(case, settings=dataclasses.replace(
+        case.settings, run=dataclasses.replace(case.settings.run, acceleration_relaxation=0.7)))
+    run, _, _ = prepare(old, "coarse", 2, False, tmp_path)
     layout.mark_done(run, layout.FINISHED)
-    assert prepare(case, "coarse", 2, False, tmp_path) == (run, False, True)
-    (run / layout.MARKERS / "settings").write_text("0123456789abcdef 2\n")
     with pytest.raises(InputError, match="other settings"):
         prepare(case, "coarse", 2, False, tmp_path)
+    assert prepare(old, "coarse", 2, False, tmp_path) == (run, False, True)
+    # a study's run is stamped with its divisor: not the level's own run
+    assert settings_digest(case, "medium", divisor=2) != settings_digest(case, "medium")
 
 
 def test_a_study_checks_its_four_runs_before_the_first(tmp_path):
@@ -426,13 +428,13 @@ def test_a_study_is_of_the_settings_its_runs_were_made_with(tmp_path):
     synthetic runs here) is taken as it is."""
     case = load_case("cylinder_heave")
     cells = {"coarse": 11280, "medium": 22857, "fine": 45120}
-    for level, divisor, factor in plan():
-        name = layout.run_name(level, divisor, factor)
-        _synthetic_run(tmp_path, name, cells[level], 0.61, 0.1, 0.002)
-        (tmp_path / case.name / name / layout.MARKERS / "settings").write_text(
-            f"{settings_digest(case, level)} 2\n")
+    for level, divisor, factor in plan(morphing=1.5):  # stamped as floatfoam run stamps them
+        prepare(case, level, 2, False, tmp_path, divisor, factor)
+        _synthetic_run(tmp_path, layout.run_name(level, divisor, factor), cells[level], 0.61,
+                       0.1, 0.002)
     env = {"FLOATFOAM_BUILD": str(tmp_path), "PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg"}
-    argv = [sys.executable, "-m", "floatfoam.cli", "validate", "cylinder_heave", "--no-run"]
+    argv = [sys.executable, "-m", "floatfoam.cli", "validate", "cylinder_heave", "--no-run",
+            "--morphing", "1.5"]
     before = sorted(tmp_path.rglob("*"))
     out = subprocess.run([*argv, "--set", "run.time_scheme=CrankNicolson 1"], env=env,
                          capture_output=True, text=True, timeout=120)
@@ -441,8 +443,9 @@ def test_a_study_is_of_the_settings_its_runs_were_made_with(tmp_path):
     assert sorted(tmp_path.rglob("*")) == before
     out = subprocess.run(argv, env=env, capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
-    assert json.loads((tmp_path / case.name / "validation" / "validation.json").read_text())[
-        "time_order"] == 1.0
+    study = json.loads((tmp_path / case.name / "validation" / "validation.json").read_text())
+    assert study["time_order"] == 1.0
+    assert study["runs"] == ["coarse", "medium", "fine", "medium-dt2", "coarse-morph1.5"]
     # unstamped: taken as it is
     (tmp_path / case.name / "coarse" / layout.MARKERS / "settings").unlink()
     assert "coarse" in validate_case(case, tmp_path)["runs"]

@@ -143,7 +143,7 @@ def study_runs(case, build: Path, time_level: str = TIME_STEP_LEVEL,
         run = layout.run_dir(case.name, level, build, time_step_divisor=divisor,
                              morphing=factor)
         if layout.is_finished(run) and (run / "motion.csv").is_file():
-            if stamped_with(case, level, run) is False:
+            if stamped_with(case, level, run, divisor, factor) is False:
                 raise InputError(f"{run} holds a run of other settings than this command's "
                                  "(case file, --set); valid: the settings it was run with")
             out.append((layout.run_name(level, divisor, factor), divisor, factor, run))

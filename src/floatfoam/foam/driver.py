@@ -17,6 +17,7 @@ written.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import math
@@ -47,17 +48,25 @@ class RunResult:
     already_finished: bool = False
 
 
-def settings_digest(case: Case, level: str, *, legacy: bool = False) -> str:
-    """Hash of what a run depends on: the case, the level, the shared dictionaries and the
-    solver binary. Not the case's words ([case] title, description, and the name of the case
-    it extends: its tables are in) nor its [reference] measurements: adding a measurement must
-    not make a finished run look foreign.
-    ``legacy``: the hash of the whole case file, as runs stamped before 2026-11-30 have it."""
+def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float = 1.0) -> str:
+    """Hash of what a run depends on: the case file, the values it resolves to with the
+    defaults (a changed default, as run.acceleration_relaxation's on 2026-12-02, makes every
+    run made before another run's), the level, the time-step divisor and morphing factor of a
+    study's run, the shared dictionaries and the solver binary. Not the case's words ([case]
+    title, description, and the name of the case it extends: its tables are in) nor its
+    [reference] measurements: adding a measurement must not make a finished run look
+    foreign."""
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()
                    if k not in ("title", "description", "extends")}
-    digest = hashlib.sha256(json.dumps({"case": case.raw if legacy else raw, "level": level},
-                                       sort_keys=True, default=str).encode())
+    resolved = {"settings": dataclasses.asdict(case.settings), "release": case.release,
+                "mass": case.mass, "cog": case.cog, "gyradius": case.gyradius, "rho": case.rho,
+                "nu": case.nu, "g": case.g, "depth": case.depth, "rho_air": case.rho_air,
+                "nu_air": case.nu_air}
+    run = {"case": raw, "resolved": resolved, "level": level}
+    if divisor != 1 or morphing != 1:
+        run |= {"divisor": divisor, "morphing": morphing}
+    digest = hashlib.sha256(json.dumps(run, sort_keys=True, default=_plain).encode())
     for path in sorted(layout.COMMON_DIR.rglob("*")):
         if path.is_file():
             digest.update(path.read_bytes())
@@ -65,16 +74,24 @@ def settings_digest(case: Case, level: str, *, legacy: bool = False) -> str:
     return digest.hexdigest()[:16]
 
 
-def stamped_with(case: Case, level: str, run_dir: Path) -> bool | None:
-    """Whether the run directory's settings stamp is this case's at ``level`` (either digest);
-    None when it has no stamp (the driver writes it before anything else: a folder without
-    one was not made by a run)."""
+def _plain(value):
+    """JSON for the digest: arrays as lists (their repr would wrap and elide), else str."""
+    return value.tolist() if hasattr(value, "tolist") else str(value)
+
+
+def stamped_with(case: Case, level: str, run_dir: Path, divisor: int = 1,
+                 morphing: float = 1.0) -> bool | None:
+    """Whether the run directory's settings stamp is that of ``case`` run at ``level`` with
+    its time steps divided by ``divisor`` and its morphing distances times ``morphing`` (the
+    case as the command gives it: a study's run stamps its own digest); None when it has no
+    stamp (the driver writes it before anything else: a folder without one was not made by a
+    run)."""
     stamp = run_dir / layout.MARKERS / "settings"
     if not stamp.exists():
         return None
     words = stamp.read_text().split()
-    known = (settings_digest(case, level), settings_digest(case, level, legacy=True))
-    return bool(words) and words[0] in known
+    return bool(words) and words[0] == settings_digest(case, level, divisor=divisor,
+                                                        morphing=morphing)
 
 
 def solver_path(case: Case) -> Path:
@@ -91,7 +108,8 @@ def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None
                  divisor: int = 1, morphing: float = 1.0) -> tuple[Path, bool | None]:
     """The run directory and what it holds: None (nothing), True (a finished run of these
     settings), False (an unfinished one to resume). Raises InputError when it holds a run of
-    other settings (or --np). Writes nothing."""
+    other settings (or --np). ``case`` is the command's, before ``divisor`` and ``morphing``
+    change it. Writes nothing."""
     run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor,
                              morphing=morphing)
     if not run_dir.exists():
@@ -99,7 +117,7 @@ def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None
     stamp = run_dir / layout.MARKERS / "settings"
     old = (stamp.read_text().split() if stamp.exists() else []) + ["?", "?"]
     finished = layout.is_finished(run_dir)
-    if not stamped_with(case, level, run_dir) or old[1] != str(np_):
+    if not stamped_with(case, level, run_dir, divisor, morphing) or old[1] != str(np_):
         what = "a finished run" if finished else "an unfinished run"
         raise InputError(f"{run_dir} holds {what} with other settings (or --np); valid: "
                          "the same settings to resume, or `floatfoam run` with --force to "
@@ -110,10 +128,11 @@ def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None
 def prepare(case: Case, level: str, np_: int, force: bool,
             build_dir: Path | None = None, divisor: int = 1,
             morphing: float = 1.0) -> tuple[Path, bool, bool]:
-    """The run directory, whether it resumes, and whether it is already finished."""
+    """The run directory, whether it resumes, and whether it is already finished. ``case``
+    is the command's, before ``divisor`` and ``morphing`` change it: the stamp holds them."""
     run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor,
                              morphing=morphing)
-    digest = settings_digest(case, level)
+    digest = settings_digest(case, level, divisor=divisor, morphing=morphing)
     stamp = run_dir / layout.MARKERS / "settings"
     if run_dir.exists():
         if force:
@@ -142,6 +161,7 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     (:mod:`floatfoam.foam.runlock`) from start to end."""
     check_ranks(np_, hostfile)
     check_morphing(morphing)
+    command_case = case  # what the run directory's stamp is of (settings_digest)
     case = smaller_steps(case, time_step_divisor)
     solver_path(case)  # refused before anything is done when missing
     if equilibrium is None:
@@ -174,7 +194,7 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
                 print(f"[{label}] the run of PID {lock.stale_holder()} ended without "
                       "finishing; this run takes its place", file=sys.stderr)
             return _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh,
-                               lock, label, time_step_divisor, morphing)
+                               lock, label, time_step_divisor, morphing, command_case)
 
 
 def check_run(case: Case, level: str, np_: int, equilibrium: Equilibrium, *,
@@ -185,6 +205,7 @@ def check_run(case: Case, level: str, np_: int, equilibrium: Equilibrium, *,
     what the run directory holds. Raises InputError; writes nothing."""
     check_ranks(np_, None)
     check_morphing(morphing)
+    command_case = case
     case = smaller_steps(case, time_step_divisor)
     solver_path(case)
     state = release_state(case, equilibrium)
@@ -193,7 +214,7 @@ def check_run(case: Case, level: str, np_: int, equilibrium: Equilibrium, *,
     case = scaled_morphing(case, level, pose, morphing)
     domain.plan(case, level, pose, local=True)
     end_time_of(case)
-    existing_run(case, level, np_, build_dir, time_step_divisor, morphing)
+    existing_run(command_case, level, np_, build_dir, time_step_divisor, morphing)
 
 
 def mesh_pose(case: Case, state: dict, equilibrium: Equilibrium):
@@ -269,10 +290,11 @@ def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool 
 
 
 def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
-                label, divisor=1, morphing=1.0) -> RunResult:
-    """The steps of :func:`run_case`, under the run directory's lock."""
-    run_dir, resumed, finished = prepare(case, level, np_, force, build_dir, divisor,
-                                         morphing)
+                label, divisor=1, morphing=1.0, command_case=None) -> RunResult:
+    """The steps of :func:`run_case`, under the run directory's lock; ``case`` as run,
+    ``command_case`` as the command gave it (the stamp's)."""
+    run_dir, resumed, finished = prepare(command_case or case, level, np_, force, build_dir,
+                                         divisor, morphing)
     motion = run_dir / "motion.csv"
     info_file = run_dir / layout.MARKERS / "info.json"
     if finished:
