@@ -73,7 +73,7 @@ class RunSettings:
                                             doc="at the interface (default: max_courant)")
     max_delta_t: float = _spec(0.005, minimum=0.0, doc="at the coarse level")
     # 1 (no relaxation, v1912's own default) since 2026-12-02; 0.7 before left the six-DoF
-    # coupling loop unconverged and the lightly damped rolls' ζ 2–11 % short (docs/coupling.md)
+    # coupling loop unconverged and the lightly damped rolls' ζ 2–10 % short (docs/coupling.md)
     acceleration_relaxation: float = _spec(1.0, minimum=0.0, maximum=1.0,
                                            doc="r: each body acceleration = r·new + "
                                            "(1 − r)·previous, in every coupling iteration")
