@@ -424,8 +424,9 @@ def test_a_study_checks_its_four_runs_before_the_first(tmp_path):
 def test_a_study_is_of_the_settings_its_runs_were_made_with(tmp_path):
     """Finished runs stamped with the case's settings are analysed (--no-run); the same runs
     under another --set (a Crank–Nicolson time order the Euler runs did not have) are refused
-    in one line, exit 2, nothing written. A folder without a stamp (made by hand, as the
-    synthetic runs here) is taken as it is."""
+    in one line, exit 2, nothing written. The runs are stamped as floatfoam run stamps them
+    (the time-step and morphing runs with their divisor and factor); their records are
+    synthetic. A folder without a stamp (made by hand) is taken as it is."""
     case = load_case("cylinder_heave")
     cells = {"coarse": 11280, "medium": 22857, "fine": 45120}
     for level, divisor, factor in plan(morphing=1.5):  # stamped as floatfoam run stamps them
