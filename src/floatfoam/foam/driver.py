@@ -63,9 +63,8 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
                 "mass": case.mass, "cog": case.cog, "gyradius": case.gyradius, "rho": case.rho,
                 "nu": case.nu, "g": case.g, "depth": case.depth, "rho_air": case.rho_air,
                 "nu_air": case.nu_air}
-    run = {"case": raw, "resolved": resolved, "level": level}
-    if divisor != 1 or morphing != 1:
-        run |= {"divisor": divisor, "morphing": morphing}
+    run = {"case": raw, "resolved": resolved, "level": level, "divisor": divisor,
+           "morphing": morphing}
     digest = hashlib.sha256(json.dumps(run, sort_keys=True, default=_plain).encode())
     for path in sorted(layout.COMMON_DIR.rglob("*")):
         if path.is_file():
@@ -290,11 +289,11 @@ def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool 
 
 
 def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
-                label, divisor=1, morphing=1.0, command_case=None) -> RunResult:
+                label, divisor, morphing, command_case) -> RunResult:
     """The steps of :func:`run_case`, under the run directory's lock; ``case`` as run,
     ``command_case`` as the command gave it (the stamp's)."""
-    run_dir, resumed, finished = prepare(command_case or case, level, np_, force, build_dir,
-                                         divisor, morphing)
+    run_dir, resumed, finished = prepare(command_case, level, np_, force, build_dir, divisor,
+                                         morphing)
     motion = run_dir / "motion.csv"
     info_file = run_dir / layout.MARKERS / "info.json"
     if finished:
