@@ -452,6 +452,43 @@ def test_a_study_is_of_the_settings_its_runs_were_made_with(tmp_path):
     assert "coarse" in validate_case(case, tmp_path)["runs"]
 
 
+def test_the_report_leaves_out_runs_and_a_study_of_other_settings(tmp_path):
+    """The report shows a case's CFD runs and its study only when they were made with the
+    case's settings of today. Runs made at relaxation 0.7 (the default until 2026-12-02) and
+    their study are left out, the comparison's notes name them and the summary's status says
+    so; the same runs stamped with today's settings are shown. Records synthetic."""
+    case = load_case("cylinder_heave")
+    old = dataclasses.replace(case, settings=dataclasses.replace(
+        case.settings, run=dataclasses.replace(case.settings.run, acceleration_relaxation=0.7)))
+    cells = {"coarse": 11280, "medium": 22857, "fine": 45120}
+    for level, divisor, factor in plan():
+        prepare(old, level, 2, False, tmp_path, divisor, factor)
+        _synthetic_run(tmp_path, layout.run_name(level, divisor, factor), cells[level], 0.61,
+                       0.1, 0.002)
+    write_study(validate_case(old, tmp_path), tmp_path / case.name / "validation")
+    cases = tmp_path / "cases"
+    shutil.copytree(layout.CASES_DIR / case.name, cases / case.name)
+
+    def report() -> str:
+        build_report(cases_dir=cases, build_dir=tmp_path,
+                     sources=Sources.default(include_potential=False))
+        return (tmp_path / "report" / "index.md").read_text()
+
+    md = report()
+    assert "| heave | CFD coarse |" not in md and "Grid and time-step convergence" not in md
+    assert "| cylinder_heave | heave |" not in md  # the verification summary
+    assert "left out, of other settings: coarse, medium, fine" in md  # the status
+    assert "CFD runs are left out: coarse, medium, fine made with other settings" in md
+    assert "study is left out: coarse, medium, fine, medium-dt2 made with other settings" in md
+    for level, divisor, factor in plan():  # stamped as today's
+        run = layout.run_dir(case.name, level, tmp_path, time_step_divisor=divisor)
+        (run / layout.MARKERS / "settings").write_text(
+            f"{settings_digest(case, level, divisor=divisor, morphing=factor)} 2\n")
+    md = report()
+    assert "| heave | CFD coarse |" in md and "### Grid and time-step convergence" in md
+    assert "| cylinder_heave | heave | 4 |" in md and "other settings" not in md
+
+
 @pytest.mark.parametrize("name", ["lab_sphere", "lab_sphere_03D", "lab_sphere_05D"])
 def test_measured_record_reduces_to_the_papers_first_cycles(name):
     """The measured record beside each laboratory sphere (one of the four drops), reduced as

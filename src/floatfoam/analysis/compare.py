@@ -41,7 +41,7 @@ from floatfoam import dofs, layout
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.analysis.extrema import crossing_reduction
 from floatfoam.analysis.measured import fit_record, reference_record
-from floatfoam.analysis.uncertainty import fine_band, read_study
+from floatfoam.analysis.uncertainty import current_study, fine_band
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.motion import dof_series, file_unit, read_motion
@@ -72,6 +72,7 @@ class Comparison:
     rows: list[dict] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     analyses: list[CfdAnalysis] = field(default_factory=list)
+    foreign: list[str] = field(default_factory=list)  # runs left out: of other settings
 
 
 def excited_dofs(case, reference: dict | None = None) -> list[str]:
@@ -90,6 +91,29 @@ def cfd_runs(case_name: str, build_dir: str | Path) -> list[tuple[str, Path]]:
     runs = ((level, layout.run_dir(case_name, level, Path(build_dir))) for level in layout.LEVELS)
     return [(level, run / "motion.csv") for level, run in runs
             if (run / "motion.csv").is_file() and layout.is_finished(run)]
+
+
+def current_runs(case, build_dir: str | Path) -> tuple[list[tuple[str, Path]], list[str]]:
+    """:func:`cfd_runs` of ``case`` whose stamp is of the case's settings today (or that have
+    none: made by hand), and the levels of those made with other settings (the case file or a
+    default changed since): a run of other settings is not this case's CFD."""
+    from floatfoam.foam.driver import stamped_with
+
+    runs, foreign = [], []
+    for level, motion in cfd_runs(case.name, build_dir):
+        current = stamped_with(case, level, motion.parent) is not False
+        (runs.append((level, motion)) if current else foreign.append(level))
+    return runs, foreign
+
+
+def stale_note(case_name: str, names: list[str], study: bool = False) -> str:
+    """The report's line on runs (or the study made of them) left out because the runs were
+    made with other settings than the case's today."""
+    what = "The grid and time-step study is" if study else "CFD runs are"
+    again = f"; then `floatfoam validate {case_name}`" if study else ""
+    return (f"{what} left out: {', '.join(names)} made with other settings than the case's "
+            f"today (its case file, or a default changed since). `floatfoam run {case_name} "
+            f"--level LEVEL --force` sets such a run aside and runs it again{again}")
 
 
 def reference_entry(reference: dict, key: str) -> tuple[float, float | None, str] | None:
@@ -434,10 +458,14 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
     comparison = Comparison(case.name)
     cycles_wanted = potential is not None and potential_cycles is not None
     potential = _potential(case, potential, comparison.notes)
-    runs = cfd_runs(case.name, build_dir)
-    if not runs:
+    runs, comparison.foreign = current_runs(case, build_dir)
+    if comparison.foreign:
+        comparison.notes.append(stale_note(case.name, comparison.foreign))
+    elif not runs:
         comparison.notes.append(f"CFD: no run yet (no {Path(build_dir, case.name)}/*/motion.csv)")
-    study = read_study(case.name, Path(build_dir))
+    study, stale = current_study(case, Path(build_dir))
+    if stale:
+        comparison.notes.append(stale_note(case.name, stale, study=True))
     for dof in excited_dofs(case, reference):
         rows = _theory_rows(case, dof, theory, potential)
         cfd_rows, analyses = _cfd_rows(case, dof, runs, theory, analysis_options or {})

@@ -184,19 +184,22 @@ def _status(comparison: Comparison) -> str:
     levels = sorted({run.level for run in comparison.analyses})
     failed = [r["source"] for r in comparison.rows if r["note"].startswith("analysis failed")]
     status = "CFD: " + ", ".join(levels) if levels else "theory only"
-    return status + (f"; failed: {', '.join(failed)}" if failed else "")
+    status += f"; failed: {', '.join(failed)}" if failed else ""
+    return status + (f"; left out, of other settings: {', '.join(comparison.foreign)}"
+                     if comparison.foreign else "")
 
 
 def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
-                  sources: Sources, pictures: bool = False) -> list[str]:
-    """Add one case's section; return its line of the summary table."""
+                  sources: Sources, pictures: bool = False) -> tuple[list[str], object]:
+    """Add one case's section; return its line of the summary table and the case (None when
+    it could not be loaded)."""
     try:
         case = sources.load(folder)
         theory = sources.theory(case)
     except InputError as err:
         doc.heading(f"{folder.name}: could not be loaded")
         doc.paragraph(f"error: {err}")
-        return [folder.name, "—", "—", f"error: {err}"]
+        return [folder.name, "—", "—", f"error: {err}"], None
     title = _intro(doc, case)
     case_out = out_dir / case.name
     case_out.mkdir(parents=True, exist_ok=True)
@@ -216,8 +219,8 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
     if pictures:
         _pictures_section(doc, case.name, sorted({r.level for r in comparison.analyses},
                                                  key=layout.LEVELS.index), build_dir, out_dir)
-    _validation_section(doc, case.name, build_dir, out_dir)
-    return [case.name, title or "—", _periods_cell(theory), _status(comparison)]
+    _validation_section(doc, case, build_dir, out_dir)
+    return [case.name, title or "—", _periods_cell(theory), _status(comparison)], case
 
 
 def _pictures_section(doc: Document, case_name: str, levels: list[str], build_dir: Path,
@@ -252,9 +255,10 @@ def _pictures_section(doc: Document, case_name: str, levels: list[str], build_di
             doc.image(src, alt)
 
 
-def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir: Path) -> None:
-    """The grid and time-step study of ``floatfoam validate``, when it has been run."""
-    from floatfoam.analysis.uncertainty import read_study
+def _validation_section(doc: Document, case, build_dir: Path, out_dir: Path) -> None:
+    """The grid and time-step study of ``floatfoam validate``, when it has been run with the
+    case's settings of today (the comparison's notes say when it was not)."""
+    from floatfoam.analysis.uncertainty import current_study
     from floatfoam.analysis.validation import (
         GCI_HEADER,
         MORPHING_HEADER,
@@ -265,7 +269,8 @@ def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir:
         study_tables,
     )
 
-    study = read_study(case_name, build_dir)
+    case_name = case.name
+    study, _ = current_study(case, build_dir)
     if study is None:
         return
     doc.heading("Grid and time-step convergence", 3)
@@ -286,15 +291,16 @@ def _validation_section(doc: Document, case_name: str, build_dir: Path, out_dir:
         doc.image(name, f"{case_name} grid and time-step convergence")
 
 
-def _verification_summary(doc: Document, folders: list[Path], build_dir: Path) -> None:
-    """One line per case and DoF that ``floatfoam validate`` has studied: its damped period and
-    damping ratio at the fine level with their numerical uncertainty."""
-    from floatfoam.analysis.uncertainty import read_study
+def _verification_summary(doc: Document, cases: list, build_dir: Path) -> None:
+    """One line per case and DoF that ``floatfoam validate`` has studied with the case's
+    settings of today: its damped period and damping ratio at the fine level with their
+    numerical uncertainty."""
+    from floatfoam.analysis.uncertainty import current_study
     from floatfoam.analysis.validation import SUMMARY_HEADER, summary_row
 
     rows = []
-    for folder in folders:
-        study = read_study(folder.name, build_dir)
+    for case in cases:
+        study, _ = current_study(case, build_dir)
         rows += [summary_row(study, dof) for dof in (study or {}).get("dofs", {})]
     if not rows:
         return
@@ -343,13 +349,14 @@ def build_report(*, cases_dir: str | Path | None = None, build_dir: str | Path |
         raise InputError(f"cases_dir = {cases_dir}: no case folder with a case.toml; valid is "
                          "the project's cases/ directory")
     body = Document("")
-    summary = [_case_section(body, folder, build_dir, out_dir, sources, pictures)
-               for folder in folders]
+    sections = [_case_section(body, folder, build_dir, out_dir, sources, pictures)
+                for folder in folders]
     doc = Document("floatfoam report")
     doc.paragraph(_provenance(), note=True)
     doc.heading("Cases")
-    doc.table(("case", "title", "linear theory periods", "status"), summary)
-    _verification_summary(doc, folders, build_dir)
+    doc.table(("case", "title", "linear theory periods", "status"),
+              [row for row, _ in sections])
+    _verification_summary(doc, [case for _, case in sections if case is not None], build_dir)
     doc.blocks += body.blocks
     (out_dir / "index.md").write_text(doc.markdown())
     html_path = out_dir / "index.html"

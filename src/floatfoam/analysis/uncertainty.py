@@ -17,6 +17,31 @@ def read_study(case_name: str, build: Path | None = None) -> dict | None:
     return json.loads(path.read_text()) if path.is_file() else None
 
 
+def current_study(case, build: Path | None = None) -> tuple[dict | None, list[str]]:
+    """(the study of ``case``, []) when every run it was made from that still holds a stamp
+    holds one of the case's settings today; (None, the names of those that do not) when the
+    case file or a default has changed since (the study is not of this case any more); (None,
+    []) without a study. A run folder gone or without a stamp leaves the study as it is."""
+    from floatfoam.foam.driver import stamped_with
+
+    study = read_study(case.name, build)
+    if study is None:
+        return None, []
+    entries = {}
+    for entry in study.get("dofs", {}).values():
+        entries.update(entry.get("runs", {}))
+    foreign = []
+    for name in study.get("runs", []):
+        run = entries.get(name, {})
+        divisor, morphing = int(run.get("divisor", 1)), float(run.get("morphing", 1.0))
+        level = name.split("-")[0]
+        folder = layout.run_dir(case.name, level, build, time_step_divisor=divisor,
+                                morphing=morphing)
+        if folder.is_dir() and stamped_with(case, level, folder, divisor, morphing) is False:
+            foreign.append(name)
+    return (None, foreign) if foreign else (study, [])
+
+
 def fine_band(study: dict, dof: str, key: str) -> tuple[float, float, float | None] | None:
     """(φ_fine, U_num |φ_fine|, φ_ext) of one quantity: the fine level's value, the half-width
     of its uncertainty band (the GCI bands the fine solution, not the extrapolated one) and the
