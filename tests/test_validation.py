@@ -456,16 +456,21 @@ def test_the_report_leaves_out_runs_and_a_study_of_other_settings(tmp_path):
     """The report shows a case's CFD runs and its study only when they were made with the
     case's settings of today. Runs made at relaxation 0.7 (the default until 2026-12-02) and
     their study are left out, the comparison's notes name them and the summary's status says
-    so; the same runs stamped with today's settings are shown. Records synthetic."""
+    so. Run again with today's settings (their stamps rewritten here), the runs are shown but
+    the study, made of the old ones, is not until it is made again; a study written before
+    studies recorded their runs' stamps is checked against the folders' stamps. Records
+    synthetic."""
     case = load_case("cylinder_heave")
     old = dataclasses.replace(case, settings=dataclasses.replace(
         case.settings, run=dataclasses.replace(case.settings.run, acceleration_relaxation=0.7)))
     cells = {"coarse": 11280, "medium": 22857, "fine": 45120}
-    for level, divisor, factor in plan():
+    runs = plan(morphing=1.5)
+    for level, divisor, factor in runs:
         prepare(old, level, 2, False, tmp_path, divisor, factor)
         _synthetic_run(tmp_path, layout.run_name(level, divisor, factor), cells[level], 0.61,
                        0.1, 0.002)
-    write_study(validate_case(old, tmp_path), tmp_path / case.name / "validation")
+    folder = tmp_path / case.name / "validation"
+    write_study(validate_case(old, tmp_path, morphing=1.5), folder)
     cases = tmp_path / "cases"
     shutil.copytree(layout.CASES_DIR / case.name, cases / case.name)
 
@@ -477,16 +482,37 @@ def test_the_report_leaves_out_runs_and_a_study_of_other_settings(tmp_path):
     md = report()
     assert "| heave | CFD coarse |" not in md and "Grid and time-step convergence" not in md
     assert "| cylinder_heave | heave |" not in md  # the verification summary
-    assert "left out, of other settings: coarse, medium, fine" in md  # the status
+    assert "left out, of other settings: coarse, medium, fine, the study |" in md  # status
     assert "CFD runs are left out: coarse, medium, fine made with other settings" in md
-    assert "study is left out: coarse, medium, fine, medium-dt2 made with other settings" in md
-    for level, divisor, factor in plan():  # stamped as today's
-        run = layout.run_dir(case.name, level, tmp_path, time_step_divisor=divisor)
+    assert ("study is left out: coarse, medium, fine, medium-dt2, coarse-morph1.5 made with "
+            "other settings") in md
+    for level, divisor, factor in runs:  # run again with today's settings
+        run = layout.run_dir(case.name, level, tmp_path, time_step_divisor=divisor,
+                             morphing=factor)
         (run / layout.MARKERS / "settings").write_text(
             f"{settings_digest(case, level, divisor=divisor, morphing=factor)} 2\n")
     md = report()
-    assert "| heave | CFD coarse |" in md and "### Grid and time-step convergence" in md
-    assert "| cylinder_heave | heave | 4 |" in md and "other settings" not in md
+    assert "| heave | CFD coarse |" in md and "Grid and time-step convergence" not in md
+    assert "left out, of other settings: the study |" in md
+    study = json.loads((folder / "validation.json").read_text())
+    del study["stamps"]  # as written before 2026-12-02: the folders' stamps are today's
+    (folder / "validation.json").write_text(json.dumps(study))
+    md = report()
+    assert "| cylinder_heave | heave | 5 |" in md and "other settings" not in md
+    write_study(validate_case(case, tmp_path, morphing=1.5), folder)  # made again
+    md = report()
+    assert "### Grid and time-step convergence" in md and "other settings" not in md
+    # a digest only names the solver: a report of runs without a built solver is drawn
+    elsewhere = dataclasses.replace(case, settings=dataclasses.replace(
+        case.settings, run=dataclasses.replace(case.settings.run, solver="/nonexistent/x")))
+    assert settings_digest(elsewhere, "coarse") != settings_digest(case, "coarse")
+
+
+@pytest.mark.parametrize("level, divisor, factor", [("coarse", 1, 1.0), ("medium", 2, 1.0),
+                                                    ("coarse", 1, 1.5), ("fine", 2, 2.5)])
+def test_a_run_name_is_read_back(level, divisor, factor):
+    assert layout.parse_run_name(layout.run_name(level, divisor, factor)) == \
+        (level, divisor, factor)
 
 
 @pytest.mark.parametrize("name", ["lab_sphere", "lab_sphere_03D", "lab_sphere_05D"])

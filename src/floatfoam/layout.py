@@ -62,6 +62,18 @@ def run_name(level: str, time_step_divisor: int = 1, morphing: float = 1.0) -> s
     return name if morphing == 1 else f"{name}-morph{morphing:g}"
 
 
+def parse_run_name(name: str) -> tuple[str, int, float]:
+    """(level, time-step divisor, morphing factor) of a run's folder name (:func:`run_name`)."""
+    level, divisor, morphing = name, 1, 1.0
+    if "-morph" in level:
+        level, factor = level.split("-morph", 1)
+        morphing = float(factor)
+    if "-dt" in level:
+        level, k = level.split("-dt", 1)
+        divisor = int(k)
+    return level, divisor, morphing
+
+
 def run_dir(case_name: str, level: str, build: Path | None = None, *,
             time_step_divisor: int = 1, morphing: float = 1.0) -> Path:
     """The run directory of a case at a mesh level: ``<build>/<case>/<level>`` (and

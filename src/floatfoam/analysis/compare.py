@@ -73,6 +73,7 @@ class Comparison:
     notes: list[str] = field(default_factory=list)
     analyses: list[CfdAnalysis] = field(default_factory=list)
     foreign: list[str] = field(default_factory=list)  # runs left out: of other settings
+    foreign_study: bool = False  # the study left out: made of runs of other settings
 
 
 def excited_dofs(case, reference: dict | None = None) -> list[str]:
@@ -110,10 +111,12 @@ def stale_note(case_name: str, names: list[str], study: bool = False) -> str:
     """The report's line on runs (or the study made of them) left out because the runs were
     made with other settings than the case's today."""
     what = "The grid and time-step study is" if study else "CFD runs are"
-    again = f"; then `floatfoam validate {case_name}`" if study else ""
+    again = f", then `floatfoam validate {case_name}`" if study else ""
     return (f"{what} left out: {', '.join(names)} made with other settings than the case's "
-            f"today (its case file, or a default changed since). `floatfoam run {case_name} "
-            f"--level LEVEL --force` sets such a run aside and runs it again{again}")
+            "today (its case file, a --set, a default or the shared dictionaries changed "
+            f"since). Run again with the run's own options and --force (`floatfoam run "
+            f"{case_name} --level LEVEL`, with `--dt-divisor K` or `--morphing F` for a "
+            f"`-dtK` or `-morphF` run), which sets the old run aside{again}")
 
 
 def reference_entry(reference: dict, key: str) -> tuple[float, float | None, str] | None:
@@ -464,6 +467,7 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
     elif not runs:
         comparison.notes.append(f"CFD: no run yet (no {Path(build_dir, case.name)}/*/motion.csv)")
     study, stale = current_study(case, Path(build_dir))
+    comparison.foreign_study = bool(stale)
     if stale:
         comparison.notes.append(stale_note(case.name, stale, study=True))
     for dof in excited_dofs(case, reference):

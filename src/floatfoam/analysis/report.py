@@ -185,8 +185,8 @@ def _status(comparison: Comparison) -> str:
     failed = [r["source"] for r in comparison.rows if r["note"].startswith("analysis failed")]
     status = "CFD: " + ", ".join(levels) if levels else "theory only"
     status += f"; failed: {', '.join(failed)}" if failed else ""
-    return status + (f"; left out, of other settings: {', '.join(comparison.foreign)}"
-                     if comparison.foreign else "")
+    left_out = comparison.foreign + (["the study"] if comparison.foreign_study else [])
+    return status + (f"; left out, of other settings: {', '.join(left_out)}" if left_out else "")
 
 
 def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,

@@ -18,26 +18,28 @@ def read_study(case_name: str, build: Path | None = None) -> dict | None:
 
 
 def current_study(case, build: Path | None = None) -> tuple[dict | None, list[str]]:
-    """(the study of ``case``, []) when every run it was made from that still holds a stamp
-    holds one of the case's settings today; (None, the names of those that do not) when the
-    case file or a default has changed since (the study is not of this case any more); (None,
-    []) without a study. A run folder gone or without a stamp leaves the study as it is."""
-    from floatfoam.foam.driver import stamped_with
+    """(the study of ``case``, []) when every run it was made from was stamped with the case's
+    settings of today; (None, the names of those that were not) when the case file, a --set or
+    a default has changed since (the study is not of this case any more); (None, []) without
+    a study. The stamps are those the study recorded when it was made; a study written before
+    it recorded them (2026-12-02) is checked against the stamps in the run folders. A run
+    without a stamp (made by hand) leaves the study as it is."""
+    from floatfoam.foam.driver import settings_digest, stamp_of
 
     study = read_study(case.name, build)
     if study is None:
         return None, []
-    entries = {}
-    for entry in study.get("dofs", {}).values():
-        entries.update(entry.get("runs", {}))
+    recorded = study.get("stamps")
     foreign = []
     for name in study.get("runs", []):
-        run = entries.get(name, {})
-        divisor, morphing = int(run.get("divisor", 1)), float(run.get("morphing", 1.0))
-        level = name.split("-")[0]
-        folder = layout.run_dir(case.name, level, build, time_step_divisor=divisor,
-                                morphing=morphing)
-        if folder.is_dir() and stamped_with(case, level, folder, divisor, morphing) is False:
+        level, divisor, morphing = layout.parse_run_name(name)
+        if recorded is not None:
+            stamp = recorded.get(name)
+        else:
+            stamp = stamp_of(layout.run_dir(case.name, level, build, time_step_divisor=divisor,
+                                            morphing=morphing))
+        if stamp is not None and stamp != settings_digest(case, level, divisor=divisor,
+                                                          morphing=morphing):
             foreign.append(name)
     return (None, foreign) if foreign else (study, [])
 

@@ -277,7 +277,10 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
             if other else "")
     theory = theory_summary(case)
     order = time_order(case)
-    out = {"case": case.name, "runs": [name for name, _, _, _ in found], "dofs": {},
+    from floatfoam.foam.driver import stamp_of
+
+    out = {"case": case.name, "runs": [name for name, _, _, _ in found],
+           "stamps": {name: stamp_of(run) for name, _, _, run in found}, "dofs": {},
            "time_order": order, "time_step_divisor": TIME_STEP_DIVISOR,
            "time_step_level": time_level, "morphing": morphing}
     for dof in excited_dofs(case, {}):

@@ -69,13 +69,20 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     for path in sorted(layout.COMMON_DIR.rglob("*")):
         if path.is_file():
             digest.update(path.read_bytes())
-    digest.update(str(solver_path(case)).encode())
+    digest.update(str(solver_path(case, check=False)).encode())
     return digest.hexdigest()[:16]
 
 
 def _plain(value):
     """JSON for the digest: arrays as lists (their repr would wrap and elide), else str."""
     return value.tolist() if hasattr(value, "tolist") else str(value)
+
+
+def stamp_of(run_dir: Path) -> str | None:
+    """The settings digest a run directory was stamped with (None without a stamp)."""
+    stamp = run_dir / layout.MARKERS / "settings"
+    words = stamp.read_text().split() if stamp.exists() else []
+    return words[0] if words else None
 
 
 def stamped_with(case: Case, level: str, run_dir: Path, divisor: int = 1,
@@ -85,19 +92,19 @@ def stamped_with(case: Case, level: str, run_dir: Path, divisor: int = 1,
     case as the command gives it: a study's run stamps its own digest); None when it has no
     stamp (the driver writes it before anything else: a folder without one was not made by a
     run)."""
-    stamp = run_dir / layout.MARKERS / "settings"
-    if not stamp.exists():
+    if not (run_dir / layout.MARKERS / "settings").exists():
         return None
-    words = stamp.read_text().split()
-    return bool(words) and words[0] == settings_digest(case, level, divisor=divisor,
-                                                        morphing=morphing)
+    digest = stamp_of(run_dir)
+    return digest is not None and digest == settings_digest(case, level, divisor=divisor,
+                                                            morphing=morphing)
 
 
-def solver_path(case: Case) -> Path:
-    """The interFoam to run: floatfoam's rebuilt one unless [run] solver names another."""
+def solver_path(case: Case, check: bool = True) -> Path:
+    """The interFoam to run: floatfoam's rebuilt one unless [run] solver names another.
+    ``check``: refuse one that does not exist (a digest, which only names it, does not)."""
     path = Path(case.settings.run.solver or layout.SOLVER)
     path = path if path.is_absolute() else layout.ROOT / path
-    if not path.is_file():
+    if check and not path.is_file():
         raise InputError(f"run.solver = {str(path)!r} does not exist; run `make setup` to build "
                          "floatfoam's interFoam (scripts/build_solver.sh)")
     return path
