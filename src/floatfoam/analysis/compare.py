@@ -96,14 +96,16 @@ def cfd_runs(case_name: str, build_dir: str | Path) -> list[tuple[str, Path]]:
 
 def current_runs(case, build_dir: str | Path) -> tuple[list[tuple[str, Path]], list[str]]:
     """:func:`cfd_runs` of ``case`` whose stamp is of the case's settings today (or that have
-    none: made by hand), and the levels of those made with other settings (the case file or a
-    default changed since): a run of other settings is not this case's CFD."""
+    none: made by hand), and the levels of those made with other settings (its case file, a
+    --set or a default changed since): a run of other settings is not this case's CFD."""
     from floatfoam.foam.driver import stamped_with
 
     runs, foreign = [], []
     for level, motion in cfd_runs(case.name, build_dir):
-        current = stamped_with(case, level, motion.parent) is not False
-        (runs.append((level, motion)) if current else foreign.append(level))
+        if stamped_with(case, level, motion.parent) is False:
+            foreign.append(level)
+        else:
+            runs.append((level, motion))
     return runs, foreign
 
 

@@ -268,6 +268,8 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
     """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict.
     ``morphing`` None keeps the morphing run of the study already written, if it is still
     finished (:func:`finished_morphing`)."""
+    from floatfoam.foam.driver import stamp_of
+
     build = Path(build or layout.build_dir())
     morphing = morphing if morphing is not None else finished_morphing(case.name, build)
     found = study_runs(case, build, time_level, morphing)
@@ -277,8 +279,6 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
             if other else "")
     theory = theory_summary(case)
     order = time_order(case)
-    from floatfoam.foam.driver import stamp_of
-
     out = {"case": case.name, "runs": [name for name, _, _, _ in found],
            "stamps": {name: stamp_of(run) for name, _, _, run in found}, "dofs": {},
            "time_order": order, "time_step_divisor": TIME_STEP_DIVISOR,
