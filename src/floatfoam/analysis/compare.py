@@ -74,6 +74,7 @@ class Comparison:
     analyses: list[CfdAnalysis] = field(default_factory=list)
     foreign: list[str] = field(default_factory=list)  # runs left out: of other settings
     foreign_study: bool = False  # the study left out: made of runs of other settings
+    study: dict | None = None  # the study of floatfoam validate, when of today's settings
 
 
 def excited_dofs(case, reference: dict | None = None) -> list[str]:
@@ -469,7 +470,7 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
     elif not runs:
         comparison.notes.append(f"CFD: no run yet (no {Path(build_dir, case.name)}/*/motion.csv)")
     study, stale = current_study(case, Path(build_dir))
-    comparison.foreign_study = bool(stale)
+    comparison.study, comparison.foreign_study = study, bool(stale)
     if stale:
         comparison.notes.append(stale_note(case.name, stale, study=True))
     for dof in excited_dofs(case, reference):

@@ -190,9 +190,9 @@ def _status(comparison: Comparison) -> str:
 
 
 def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
-                  sources: Sources, pictures: bool = False) -> tuple[list[str], object]:
-    """Add one case's section; return its line of the summary table and the case (None when
-    it could not be loaded)."""
+                  sources: Sources, pictures: bool = False) -> tuple[list[str], dict | None]:
+    """Add one case's section; return its line of the summary table and its study (None
+    without one of today's settings, or when the case could not be loaded)."""
     try:
         case = sources.load(folder)
         theory = sources.theory(case)
@@ -219,8 +219,9 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
     if pictures:
         _pictures_section(doc, case.name, sorted({r.level for r in comparison.analyses},
                                                  key=layout.LEVELS.index), build_dir, out_dir)
-    _validation_section(doc, case, build_dir, out_dir)
-    return [case.name, title or "—", _periods_cell(theory), _status(comparison)], case
+    _validation_section(doc, case.name, comparison.study, build_dir, out_dir)
+    return [case.name, title or "—", _periods_cell(theory), _status(comparison)], \
+        comparison.study
 
 
 def _pictures_section(doc: Document, case_name: str, levels: list[str], build_dir: Path,
@@ -255,10 +256,10 @@ def _pictures_section(doc: Document, case_name: str, levels: list[str], build_di
             doc.image(src, alt)
 
 
-def _validation_section(doc: Document, case, build_dir: Path, out_dir: Path) -> None:
+def _validation_section(doc: Document, case_name: str, study: dict | None, build_dir: Path,
+                        out_dir: Path) -> None:
     """The grid and time-step study of ``floatfoam validate``, when it has been run with the
-    case's settings of today (the comparison's notes say when it was not)."""
-    from floatfoam.analysis.uncertainty import current_study
+    case's settings of today (the comparison's, which says in its notes when it was not)."""
     from floatfoam.analysis.validation import (
         GCI_HEADER,
         MORPHING_HEADER,
@@ -269,8 +270,6 @@ def _validation_section(doc: Document, case, build_dir: Path, out_dir: Path) -> 
         study_tables,
     )
 
-    case_name = case.name
-    study, _ = current_study(case, build_dir)
     if study is None:
         return
     doc.heading("Grid and time-step convergence", 3)
@@ -291,17 +290,13 @@ def _validation_section(doc: Document, case, build_dir: Path, out_dir: Path) -> 
         doc.image(name, f"{case_name} grid and time-step convergence")
 
 
-def _verification_summary(doc: Document, cases: list, build_dir: Path) -> None:
+def _verification_summary(doc: Document, studies: list[dict]) -> None:
     """One line per case and DoF that ``floatfoam validate`` has studied with the case's
     settings of today: its damped period and damping ratio at the fine level with their
     numerical uncertainty."""
-    from floatfoam.analysis.uncertainty import current_study
     from floatfoam.analysis.validation import SUMMARY_HEADER, summary_row
 
-    rows = []
-    for case in cases:
-        study, _ = current_study(case, build_dir)
-        rows += [summary_row(study, dof) for dof in (study or {}).get("dofs", {})]
+    rows = [summary_row(study, dof) for study in studies for dof in study.get("dofs", {})]
     if not rows:
         return
     doc.heading("Verification: grid and time-step convergence")
@@ -356,7 +351,7 @@ def build_report(*, cases_dir: str | Path | None = None, build_dir: str | Path |
     doc.heading("Cases")
     doc.table(("case", "title", "linear theory periods", "status"),
               [row for row, _ in sections])
-    _verification_summary(doc, [case for _, case in sections if case is not None], build_dir)
+    _verification_summary(doc, [study for _, study in sections if study is not None])
     doc.blocks += body.blocks
     (out_dir / "index.md").write_text(doc.markdown())
     html_path = out_dir / "index.html"
