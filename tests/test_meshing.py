@@ -169,6 +169,19 @@ def test_bad_inputs(cases, tmp_path):
         build_domain(case, "coarse", "2d")
     with pytest.raises(InputError, match="not a 2D section"):
         build_domain(cases["sphere"], "coarse", "2d")
+    # a release that lifts the body out of the tank names the tank's height and the release,
+    # on every kind of domain, before gmsh meshes anything
+    case = load_case("sphere", ["release.heave=2"])
+    with pytest.raises(InputError, match=r"domain.depth = 2 m .*band \(±2.05 m.*release"):
+        build_domain(case, "coarse", "wedge")
+    for name, heave in (("ellipsoid_roll", 0.5), ("ellipsoid_roll", 2.0), ("stl_pontoon", 0.5)):
+        # the body through the tank's top (0.5 m of air), then wholly above it: both were
+        # once told "domain.half_length" (the cut tank's faces taken for the body's)
+        case = load_case(name, [f"release.heave={heave}"])
+        with pytest.raises(InputError, match=r"^domain.air_height = 0.5 m does not hold the "
+                                             r"body, which reaches z = \+.*smaller release$"):
+            build_domain(case, "coarse", "3d", path=tmp_path / "x.msh")
+    assert not (tmp_path / "x.msh").exists()
 
 
 @pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")

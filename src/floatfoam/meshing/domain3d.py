@@ -56,10 +56,10 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
             if body.expression is not None:  # an implicit surface: nodes back onto F = 0
                 func = compile_expression(body.expression)
                 vertices = relax_on_surface(vertices, body.faces, func, spec.span)
-            body_surfaces, volume = _discrete_body(gmsh, vertices, body.faces, where, tank)
+            body_surfaces, volume = _discrete_body(gmsh, vertices, body.faces, where, tank,
+                                                   spec)
         else:
-            body_surfaces, volume = _solid_body(gmsh, body, where, tank, half)
-        _check_room(gmsh, body_surfaces, tank, spec)
+            body_surfaces, volume = _solid_body(gmsh, body, where, tank, spec, half)
         # curvature sizing on reparametrised triangles costs minutes: exact solids only
         _size_field(gmsh, body_surfaces, spec, tank,
                     curvature=not isinstance(body, bodies.MeshBody))
@@ -71,7 +71,7 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
     return result
 
 
-def _solid_body(gmsh, body, where: Pose, tank: Tank,
+def _solid_body(gmsh, body, where: Pose, tank: Tank, spec: MeshSpec,
                 half: str | None = None) -> tuple[list[int], int]:
     """The tank (its half on the positive side of the plane ``half`` = 0) minus the placed
     solid."""
@@ -80,6 +80,8 @@ def _solid_body(gmsh, body, where: Pose, tank: Tank,
     occ.rotate([(3, solid)], 0, 0, 0, 1, 0, 0, where.heel)
     occ.rotate([(3, solid)], 0, 0, 0, 0, 1, 0, where.trim)
     occ.translate([(3, solid)], 0, 0, where.z_c)
+    box = occ.getBoundingBox(3, solid)
+    _check_room(np.array(box[:3]), np.array(box[3:]), tank, spec)
     x0 = 0.0 if half == "x" else -tank.half_length
     y0 = 0.0 if half == "y" else -tank.half_width
     box = occ.addBox(x0, y0, -tank.depth, tank.half_length - x0, tank.half_width - y0,
@@ -118,9 +120,11 @@ def relax_on_surface(vertices: np.ndarray, faces: np.ndarray, func, size: float,
     return v
 
 
-def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank) -> tuple[list[int], int]:
+def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank,
+                   spec: MeshSpec) -> tuple[list[int], int]:
     """A triangulated body as reparametrised discrete surfaces, and the tank around them."""
     vertices = place(vertices, where)
+    _check_room(vertices.min(axis=0), vertices.max(axis=0), tank, spec)
     surface = gmsh.model.addDiscreteEntity(2)
     n = len(vertices)
     gmsh.model.mesh.addNodes(2, surface, list(range(1, n + 1)), vertices.ravel().tolist())
@@ -174,19 +178,19 @@ def _tank_faces(gmsh, tank: Tank) -> set[int]:
     return found
 
 
-def _check_room(gmsh, body_surfaces, tank: Tank, spec: MeshSpec) -> None:
-    lo = np.full(3, np.inf)
-    hi = np.full(3, -np.inf)
-    for tag in body_surfaces:
-        box = gmsh.model.getBoundingBox(2, tag)
-        lo, hi = np.minimum(lo, box[:3]), np.maximum(hi, box[3:])
-    need = {"half_length": max(abs(lo[0]), hi[0]), "half_width": max(abs(lo[1]), hi[1]),
-            "depth": -lo[2], "air_height": hi[2]}
-    for key, value in need.items():
+def _check_room(lo: np.ndarray, hi: np.ndarray, tank: Tank, spec: MeshSpec) -> None:
+    """The placed body's bounding box [lo, hi] inside the tank with a cell to spare, checked
+    before the tank is cut: a body through a wall or the tank's top would be cut with it."""
+    reach = {"half_length": (max(-lo[0], hi[0]), "|x|"), "half_width": (max(-lo[1], hi[1]), "|y|"),
+             "depth": (-lo[2], "z = −"), "air_height": (hi[2], "z = +")}
+    for key, (value, where) in reach.items():
         have = getattr(tank, key)
         if have <= value + spec.body_size_3d:
-            raise InputError(f"domain.{key} = {have:g} m does not hold the body; valid is > "
-                             f"{value + spec.body_size_3d:.4g} m")
+            at = f"{where} = {value:.4g}" if where.startswith("|") else f"{where}{value:.4g}"
+            raise InputError(f"domain.{key} = {have:g} m does not hold the body, which reaches "
+                             f"{at} m where it is meshed (the [release] offsets move it); "
+                             f"valid is > {value + spec.body_size_3d:.4g} m, or a smaller "
+                             "release")
 
 
 def _size_field(gmsh, body_surfaces, spec: MeshSpec, tank: Tank, curvature: bool) -> None:
