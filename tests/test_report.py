@@ -124,8 +124,10 @@ def test_report_command_and_bad_cases_dir(tmp_path, monkeypatch, capsys):
                               "--out", str(tmp_path / "out")])
     assert args.func(args) == 0
     assert str(tmp_path / "out" / "index.html") in capsys.readouterr().out
-    with pytest.raises(InputError, match="no case folder with a case.toml"):
-        build_report(cases_dir=tmp_path / "empty", build_dir=build, sources=sources)
+    with pytest.raises(InputError, match="^--cases .*empty: no case folder with a case.toml"):
+        build_report(cases_dir=tmp_path / "empty", build_dir=build, out_dir=tmp_path / "out2",
+                     sources=sources)
+    assert not (tmp_path / "out2").exists()  # the error comes before anything is written
 
 
 CASE_TOML = """

@@ -338,11 +338,11 @@ def build_report(*, cases_dir: str | Path | None = None, build_dir: str | Path |
     cases_dir = Path(cases_dir or layout.CASES_DIR)
     build_dir = Path(build_dir or layout.build_dir())
     out_dir = Path(out_dir or build_dir / "report")
-    out_dir.mkdir(parents=True, exist_ok=True)
     folders = layout.list_cases(cases_dir)
     if not folders:
-        raise InputError(f"cases_dir = {cases_dir}: no case folder with a case.toml; valid is "
-                         "the project's cases/ directory")
+        raise InputError(f"--cases {cases_dir}: no case folder with a case.toml in it; valid is "
+                         "a folder of case folders, as the project's cases/")
+    out_dir.mkdir(parents=True, exist_ok=True)
     body = Document("")
     sections = [_case_section(body, folder, build_dir, out_dir, sources, pictures)
                 for folder in folders]
