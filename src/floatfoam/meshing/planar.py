@@ -105,7 +105,7 @@ def core_bounds(radius: float, where: Pose, spec: MeshSpec, tank: Tank) -> tuple
             raise InputError(f"domain.{key} = {value:g} m leaves no room around the body (its "
                              f"centre at z = {where.z_c:+.4g} m where it is meshed) and the "
                              f"free-surface band (±{tank.band:.4g} m: a quarter of the body's "
-                             f"width and the [release] offsets); valid is > "
+                             f"smallest width and the [release] offsets); valid is > "
                              f"{need + spec.body_size:.4g} m, or a smaller release")
     return c, v_lo, v_hi
 
