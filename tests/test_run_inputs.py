@@ -44,6 +44,8 @@ FLOATFOAM = Path(sys.executable).with_name("floatfoam")
     ("potential.omega_min=5", ["omega_min", "omega_max"]),
     ("mesh.cells_side=1e9", ["mesh.cells_side", "20000"]),
     ("body.bilge_radius=\"abc\"", ["body.bilge_radius", "valid"]),
+    ("release.heel=200", ["release.heel = 200", "−180 < heel ≤ 180"]),
+    ("release.trim=-95", ["release.trim = -95", "−90 ≤ trim ≤ 90"]),
 ])
 def test_settings_are_checked_when_the_case_loads(setting, words):
     overrides = [setting]

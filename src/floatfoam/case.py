@@ -326,6 +326,13 @@ def _build(folder: Path, cfg: dict) -> Case:
                          "gyration about axes through G")
     gyradius = _vector(cfg, "mass", "gyradius", positive=True)
     release = {k: _number(cfg, "release", k, positive=False) for k in RELEASE_KEYS}
+    # one pair of angles for each attitude (degrees from the equilibrium one)
+    if not -180.0 < release["heel"] <= 180.0:
+        raise InputError(f"release.heel = {release['heel']:g}: valid is −180 < heel ≤ 180 "
+                         "(degrees from the equilibrium attitude)")
+    if not -90.0 <= release["trim"] <= 90.0:
+        raise InputError(f"release.trim = {release['trim']:g}: valid is −90 ≤ trim ≤ 90 "
+                         "(degrees from the equilibrium attitude)")
     air = {k: _number(cfg, "fluid", k) for k in ("rho_air", "nu_air")}
     table = cfg.get("case", {})
     text = {k: table.get(k, "") for k in ("title", "description")}
