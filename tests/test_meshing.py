@@ -228,3 +228,67 @@ def test_gmsh_leaves_the_signal_handlers():
                           text=True, timeout=60)
     assert done.returncode == 0, (done.returncode, done.stderr)
     assert done.stdout.split("\n")[:3] == ["SIGPIPE ignored", "raised SIGTERM", "raised SIGHUP"]
+
+
+SPHERE_3D = """[body]
+shape = "implicit"
+expression = "x**2 + y**2 + z**2 - 0.01"
+bounds = [[-0.11, -0.11, -0.11], [0.11, 0.11, 0.11]]
+resolution = 40
+[mass]
+density = 500.0
+cog = [0.0, 0.0, -0.02]
+gyradius = [0.06325, 0.06325, 0.06325]
+[fluid]
+rho = 1000.0
+nu = 1.0e-6
+g = 9.81
+[release]
+heave = 0.01
+[mesh.gmsh]
+body_cells_3d = 6
+layers_3d = 3
+"""
+
+
+def _prism_nodes(path):
+    """The nodes of every prism of an MSH file, (n, 6, 3)."""
+    import gmsh
+
+    from floatfoam.meshing import gmshio
+
+    with gmshio.session("read"):
+        gmsh.open(str(path))
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        where = dict(zip(tags, coords.reshape(-1, 3), strict=True))
+        types, _, nodes = gmsh.model.mesh.getElements(3)
+        prisms = [n for t, n in zip(types, nodes, strict=True) if t == 6]
+        return np.array([where[k] for k in prisms[0]]).reshape(-1, 6, 3) if prisms else \
+            np.zeros((0, 6, 3))
+
+
+@pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")
+def test_prism_layers_at_a_triangulated_body(tmp_path):
+    from floatfoam.foam.meshcheck import convert_and_check
+    from floatfoam.meshing.domain3d import layer_heights
+
+    (tmp_path / "case.toml").write_text(SPHERE_3D)
+    case = load_case(str(tmp_path))
+    spec = levels.mesh_spec(case, "coarse")
+    heights = layer_heights(spec)  # cumulative, each layer 1.2 × the one below, one cell in all
+    assert heights[-1] == pytest.approx(spec.body_size_3d) == pytest.approx(0.2 / 6, rel=0.01)
+    assert heights[1] - heights[0] == pytest.approx(1.2 * heights[0])
+    result = build_domain(case, "coarse", "3d", path=tmp_path / "s.msh")
+    prisms = _prism_nodes(tmp_path / "s.msh")
+    assert result["cell_types"]["Prism"] == len(prisms) == 3 * result["patches"]["body"]
+    # outwards from the sphere (its centre raised 10 mm by the release), as far as the layers
+    # reach: the nodes lie at the body's radius (0.1 m) or above it by one of the heights
+    radius = np.linalg.norm(prisms - [0.0, 0.0, 0.01], axis=2)
+    assert radius.min() > 0.1 - 1e-3 and radius.max() < 0.1 + heights[-1] + 1e-3
+    assert radius.max() > 0.1 + heights[-1] - 1e-3
+    quality = convert_and_check(tmp_path / "s.msh", tmp_path / "foam")
+    assert quality["mesh_ok"] and quality["cells"] == result["cells"]
+    # a body of OpenCASCADE's has no layers: refused when the case loads
+    with pytest.raises(InputError, match=r"^mesh.gmsh.layers_3d = 3: valid only for a body "
+                                         r"given by triangles .*0 for a sphere$"):
+        load_case("sphere", ["mesh.gmsh.layers_3d=3"])

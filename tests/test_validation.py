@@ -219,6 +219,19 @@ def test_smaller_steps_is_another_run():
     assert settings_digest(more, "fine") == settings_digest(case, "fine")
 
 
+def test_a_setting_added_later_leaves_the_runs_before_it():
+    """A field marked ``added`` (mesh.gmsh.layers_3d, 2026-12-03) is out of the stamp at its
+    default, so the runs made before it existed keep theirs; set, it makes another run."""
+    from floatfoam.settings import stamped
+
+    case = load_case("superellipsoid_buoy")
+    gmsh = stamped(case.settings)["mesh"]["gmsh"]
+    assert "growth_3d" in gmsh and "layers_3d" not in gmsh and "layers_height_3d" not in gmsh
+    layered = load_case("superellipsoid_buoy", ["mesh.gmsh.layers_3d=3"])
+    assert stamped(layered.settings)["mesh"]["gmsh"]["layers_3d"] == 3
+    assert settings_digest(layered, "coarse") != settings_digest(case, "coarse")
+
+
 @pytest.mark.parametrize("name, inner, outer", [
     ("cylinder_heave", 0.045, 0.24),  # its [run] distances
     ("elliptic_cylinder", 0.3 * 0.2, 1.6 * 0.2),  # the defaults: 0.3 and 1.6 × its 0.2 m height

@@ -347,6 +347,10 @@ def _build(folder: Path, cfg: dict) -> Case:
             raise InputError(f"reference.{key} = {entry!r}: valid is a table with file (a CSV "
                              f"beside case.toml, in {folder}) and source")
     stages = settings.parse_settings(cfg)
+    if stages.mesh.gmsh.layers_3d and not isinstance(body, shapes.MeshBody):
+        raise InputError(f"mesh.gmsh.layers_3d = {stages.mesh.gmsh.layers_3d}: valid only for "
+                         "a body given by triangles (body.shape stl or implicit); 0 for a "
+                         f"{cfg['body'].get('shape')}")
     tank_depth = stages.domain.depth
     if math.isfinite(depth) and tank_depth is not None and abs(tank_depth - depth) > 1e-9 * depth:
         raise InputError(f"domain.depth = {tank_depth!r} differs from fluid.depth = {depth!r}: "

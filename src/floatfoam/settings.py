@@ -7,7 +7,8 @@ against its range and the relations between numbers are checked (inner < outer d
 interval ≤ end time, ω_min < ω_max). Stages read :class:`Settings`, never the raw TOML.
 
 A field's range is in its metadata: ``minimum`` (exclusive unless ``closed``), ``maximum``
-(inclusive), ``kind`` (float, int, bool, str).
+(inclusive), ``kind`` (float, int, bool, str); ``added`` marks a field added after runs were
+made whose default leaves them as they were (:func:`stamped`).
 """
 
 from __future__ import annotations
@@ -36,10 +37,26 @@ def max_cells() -> int:
     return int(memory // BYTES_PER_CELL)
 
 
-def _spec(default, *, kind=float, minimum=None, closed=False, maximum=None, doc=""):
-    """A settings field: its default and the range :func:`_value` checks."""
+def _spec(default, *, kind=float, minimum=None, closed=False, maximum=None, doc="",
+          added=False):
+    """A settings field: its default and the range :func:`_value` checks. ``added``: a field
+    added later, whose default changes nothing that was run before it."""
     return field(default=default, metadata={"kind": kind, "minimum": minimum, "closed": closed,
-                                            "maximum": maximum, "doc": doc})
+                                            "maximum": maximum, "doc": doc, "added": added})
+
+
+def stamped(settings) -> dict:
+    """The settings as a run's stamp holds them (``dataclasses.asdict`` without the fields
+    marked ``added`` that are at their default): a field added with a default that changes
+    nothing must not make every run made before it look as of other settings."""
+    out = {}
+    for item in fields(settings):
+        value = getattr(settings, item.name)
+        if hasattr(value, "__dataclass_fields__"):
+            out[item.name] = stamped(value)
+        elif not (item.metadata.get("added") and value == item.default):
+            out[item.name] = value
+    return out
 
 
 MESH_POSES = ("release", "equilibrium")
@@ -119,6 +136,10 @@ class GmshSettings:
     # interFoam step costs ~11 µs per cell on 2 ranks here: 5 roll periods in ~2 min
     growth: float = _spec(1.2, minimum=1.0, maximum=3.0)
     growth_3d: float = _spec(1.2, minimum=1.0, maximum=3.0)
+    # prism layers at a body given by triangles (3D): their count and their total height as a
+    # fraction of the body's cell size (meshing.domain3d)
+    layers_3d: int = _spec(0, kind=int, minimum=0, closed=True, maximum=20, added=True)
+    layers_height_3d: float = _spec(1.0, minimum=0.0, maximum=5.0, added=True)
     margin: float = _spec(0.5, minimum=0.0, maximum=50.0)
 
     def check(self) -> None:

@@ -17,7 +17,6 @@ written.
 
 from __future__ import annotations
 
-import dataclasses
 import hashlib
 import json
 import math
@@ -28,7 +27,7 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from floatfoam import layout
+from floatfoam import layout, settings
 from floatfoam.case import Case
 from floatfoam.errors import InputError
 from floatfoam.foam import domain, runner
@@ -59,7 +58,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()
                    if k not in ("title", "description", "extends")}
-    resolved = {"settings": dataclasses.asdict(case.settings), "release": case.release,
+    resolved = {"settings": settings.stamped(case.settings), "release": case.release,
                 "mass": case.mass, "cog": case.cog, "gyradius": case.gyradius, "rho": case.rho,
                 "nu": case.nu, "g": case.g, "depth": case.depth, "rho_air": case.rho_air,
                 "nu_air": case.nu_air}

@@ -17,11 +17,18 @@ triangles (``stl``, ``implicit``) are classified into smooth patches (feature an
 :data:`FEATURE_ANGLE`), reparametrised and remeshed at the same sizes, and the tank is built
 around them with gmsh's built-in kernel; an implicit body's marching-cubes triangles are first
 relaxed onto F = 0 (:func:`relax_on_surface`), their slivers defeat the reparametrisation.
+
+Prism layers (``mesh.gmsh.layers_3d``, bodies given by triangles): the body's surface mesh
+extruded outwards along its normals (gmsh's built-in ``extrudeBoundaryLayer``), each layer
+:data:`LAYER_GROWTH` times the one below, together ``layers_height_3d`` × h₀; the tetrahedra
+start on the outer layer. Their cost is small (3 layers: +2 % cells on the 3D sphere), and
+they stand in for the first tetrahedra at the body, where the free surface meets it.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +40,7 @@ from floatfoam.meshing import gmshio, sections
 from floatfoam.meshing.body_surface import place
 from floatfoam.meshing.levels import MeshSpec, Pose, Tank
 
+LAYER_GROWTH = 1.2  # each prism layer this much thicker than the one below it
 FEATURE_ANGLE = 20.0  # degrees: sharper turns between triangles stay edges (pontoon: 25.6°)
 VERBOSITY = 1  # gmsh messages: 1 errors only; 4 to see where the time goes
 
@@ -56,15 +64,16 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
             if body.expression is not None:  # an implicit surface: nodes back onto F = 0
                 func = compile_expression(body.expression)
                 vertices = relax_on_surface(vertices, body.faces, func, spec.span)
-            body_surfaces, volume = _discrete_body(gmsh, vertices, body.faces, where, tank,
-                                                   spec)
+            body_surfaces, volume, layers = _discrete_body(gmsh, vertices, body.faces, where,
+                                                           tank, spec)
         else:
             body_surfaces, volume = _solid_body(gmsh, body, where, tank, spec, half)
+            layers = Layers()
         # curvature sizing on reparametrised triangles costs minutes: exact solids only
         _size_field(gmsh, body_surfaces, spec, tank,
                     curvature=not isinstance(body, bodies.MeshBody))
         gmsh.model.mesh.generate(3)
-        groups = _physical_groups(gmsh, volume, body_surfaces, tank, half)
+        groups = _physical_groups(gmsh, volume, body_surfaces, tank, half, layers)
         gmshio.write_msh22(path)
         result = summary(gmsh, groups, path)
         result["body_triangles"] = gmshio.surface_triangles(body_surfaces)
@@ -120,9 +129,26 @@ def relax_on_surface(vertices: np.ndarray, faces: np.ndarray, func, size: float,
     return v
 
 
+@dataclass(frozen=True)
+class Layers:
+    """The prism layers' volumes and their outer surfaces (none without layers)."""
+
+    volumes: tuple[int, ...] = ()
+    tops: frozenset[int] = frozenset()
+
+
+def layer_heights(spec: MeshSpec) -> list[float]:
+    """Cumulative heights of ``spec.layers_3d`` prism layers, each LAYER_GROWTH times the one
+    below it, together ``spec.layers_height_3d``."""
+    steps = [LAYER_GROWTH**k for k in range(spec.layers_3d)]
+    scale = spec.layers_height_3d / sum(steps)
+    return [scale * sum(steps[:k + 1]) for k in range(len(steps))]
+
+
 def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank,
-                   spec: MeshSpec) -> tuple[list[int], int]:
-    """A triangulated body as reparametrised discrete surfaces, and the tank around them."""
+                   spec: MeshSpec) -> tuple[list[int], int, Layers]:
+    """A triangulated body as reparametrised discrete surfaces, its prism layers if
+    ``spec.layers_3d``, and the tank around them."""
     vertices = place(vertices, where)
     _check_room(vertices.min(axis=0), vertices.max(axis=0), tank, spec)
     surface = gmsh.model.addDiscreteEntity(2)
@@ -134,6 +160,13 @@ def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank,
     gmsh.model.mesh.createGeometry()
     body_surfaces = [tag for _, tag in gmsh.model.getEntities(2)]
     geo = gmsh.model.geo
+    layers, inner = Layers(), body_surfaces
+    if spec.layers_3d:  # extruded along the body mesh's normals, outwards (outward triangles)
+        made = geo.extrudeBoundaryLayer([(2, tag) for tag in body_surfaces],
+                                        [1] * spec.layers_3d, layer_heights(spec), True)
+        tops = [made[k - 1][1] for k in range(1, len(made)) if made[k][0] == 3]
+        layers = Layers(tuple(tag for dim, tag in made if dim == 3), frozenset(tops))
+        inner = tops
     x, y, z0, z1 = tank.half_length, tank.half_width, -tank.depth, tank.air_height
     corners = [[geo.addPoint(sx * x, sy * y, z) for sx, sy in ((-1, -1), (1, -1), (1, 1),
                                                                 (-1, 1))] for z in (z0, z1)]
@@ -144,9 +177,9 @@ def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank,
     for k in range(4):
         loop = geo.addCurveLoop([rings[0][k], posts[(k + 1) % 4], -rings[1][k], -posts[k]])
         faces.append(geo.addPlaneSurface([loop]))
-    volume = geo.addVolume([geo.addSurfaceLoop(faces), geo.addSurfaceLoop(body_surfaces)])
+    volume = geo.addVolume([geo.addSurfaceLoop(faces), geo.addSurfaceLoop(inner)])
     geo.synchronize()
-    return body_surfaces, volume
+    return body_surfaces, volume, layers
 
 
 PLANE_EPS = 2e-5  # m: OpenCASCADE pads bounding boxes by up to ~1e-5 m (a 2 m tank's 2e-6
@@ -220,14 +253,14 @@ def _size_field(gmsh, body_surfaces, spec: MeshSpec, tank: Tank, curvature: bool
 
 
 def _physical_groups(gmsh, volume: int, body_surfaces: list[int], tank: Tank,
-                     half: str | None = None) -> dict:
+                     half: str | None = None, layers: Layers = Layers()) -> dict:
     groups = {"bottom": [], "atmosphere": [], "sides": [], "body": sorted(body_surfaces)}
     if half:
         groups["symmetry"] = []
     eps = 1e-6 * tank.half_length
     for _, tag in gmsh.model.getBoundary([(3, volume)], oriented=False):
         tag = abs(tag)
-        if tag in body_surfaces:
+        if tag in body_surfaces or tag in layers.tops:
             continue
         box = gmsh.model.getBoundingBox(2, tag)
         z0, z1 = box[2], box[5]
@@ -239,7 +272,7 @@ def _physical_groups(gmsh, volume: int, body_surfaces: list[int], tank: Tank,
         else:
             groups["sides"].append(tag)
     named = {name: (2, tags) for name, tags in groups.items()}
-    named["fluid"] = (3, [volume])
+    named["fluid"] = (3, [volume, *layers.volumes])
     for name, (dim, tags) in named.items():
         if not tags:
             raise RuntimeError(f"meshing: the {name!r} patch came out empty")

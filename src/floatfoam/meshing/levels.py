@@ -51,6 +51,8 @@ class MeshSpec:
     body_size_3d : same for 3D volume meshes
     curvature_points : cells per 2π of turning, curvature_cells r^index
     growth, growth_3d : grading away from the body (coarse values; see the module docstring)
+    layers_3d, layers_height_3d : prism layers at a triangulated body in 3D: their count and
+        total height (m; 0 without layers)
     margin : half-thickness of the core block around the body, m
     """
 
@@ -65,6 +67,8 @@ class MeshSpec:
     growth: float
     growth_3d: float
     margin: float
+    layers_3d: int = 0
+    layers_height_3d: float = 0.0
 
     def refine(self, count: float) -> int:
         """A coarse-level cell count at this level: round(count r^index), at least 1."""
@@ -131,7 +135,9 @@ def mesh_spec(case: Case, level: str) -> MeshSpec:
         body_size=length / (cfg.body_cells * scale),
         body_size_3d=length / (cfg.body_cells_3d * scale),
         curvature_points=cfg.curvature_cells * scale,
-        growth=cfg.growth, growth_3d=cfg.growth_3d, margin=cfg.margin * length)
+        growth=cfg.growth, growth_3d=cfg.growth_3d, margin=cfg.margin * length,
+        layers_3d=cfg.layers_3d,
+        layers_height_3d=cfg.layers_height_3d * length / (cfg.body_cells_3d * scale))
 
 
 def tank(case: Case) -> Tank:
