@@ -88,9 +88,12 @@ def first_sway(t, y, period: float) -> float:
 
 # Sway with the roll: G's first swing within 10 % of the coupled model. Measured on the coarse
 # meshes, make test's records and step: ellipse −7.57 mm against −7.65 mm (−1 %), hyperbola
-# −9.39 against −9.07 mm (+4 %), ellipsoid (3D) −7.76 against −8.34 mm (−7 %; by 0.35 s);
-# finer levels not run. Below 1 mm (the box, whose G is near its roll centre: 0.38 against
-# 0.39 mm) the swing is within the CFD's drift and is not checked.
+# −9.39 against −9.07 mm (+4 %), ellipsoid (3D) −7.76 against −8.34 mm (−7 %; by 0.35 s).
+# On the 2D studies' levels (make validate, relaxation 1.0, whole records; coarse / medium /
+# fine): ellipse −7.47 / −7.28 / −7.31 mm (fine −4 %), hyperbola −9.20 / −9.33 / −9.13 mm
+# (+0.7 %); the mesh moves the swing by ≤ 2.5 %, so 10 % is for the 3D ellipsoid's −7 %,
+# whose finer level was not run. Below 1 mm (the box, whose G is near its roll centre: 0.38
+# against 0.39 mm) the swing is within the CFD's drift and is not checked.
 SWAY_TOLERANCE, SWAY_CHECKED = 0.10, 1e-3
 
 
@@ -119,7 +122,12 @@ def test_section_heave(tmp_path, name):
     noise after ~1.5 cycles, too few for the decay fit, so both periods are timed by their
     first four extrema. Measured on make test's records and step (FAST_STEP): ellipse CFD
     0.760 s against Cummins' 0.763 s (−0.4 %), extrema at 0.42/0.82/1.18/1.56 s against
-    0.419/0.812/1.181/1.563 s; box +0.2 %, parabola +0.2 %."""
+    0.419/0.812/1.181/1.563 s; box +0.2 %, parabola +0.2 %. On the finer levels (`make
+    validate`, relaxation 1.0, 2026-12-03) the decay fit's T_d moves by −0.8, −0.6 and −0.5 %
+    from coarse to fine (ellipse, box, parabola) and halving the step by 0.3, 0.4 and 0.1 %;
+    the fine T_d is 0.05 % (box) and 0.6 % (parabola) from Cummins' (the ellipse's 1.5 fitted
+    cycles are not its whole-record fit). The coarse level's 0.4 % is thus no luck of the
+    mesh; 3 % is the issue's bound, held with room."""
     case, theory, motion, info = cfd(name, tmp_path,
                                      [f"run.end_time={HEAVE_RECORDS[name]}", *FAST_STEP])
     assert info["mesh"] == "2d"
@@ -150,7 +158,10 @@ def test_section_roll(tmp_path, name):
     their own step): ellipse 0.8560 s against 0.8464 s (+1.1 %), box 1.4229 s against 1.4459 s
     (−1.6 %), hyperbola 0.9084 s against 0.9080 s (+0.0 %); on make test's records and step:
     +1.2 %, −1.7 % and −0.3 %. The roll-only model about G gave 0.8683, 1.4458 and 0.9473 s
-    (−1.4, −1.6, −4.1 %) and twice the CFD's damping ratio on the ellipse and hyperbola."""
+    (−1.4, −1.6, −4.1 %) and twice the CFD's damping ratio on the ellipse and hyperbola.
+    On the fine levels (`make validate`, relaxation 1.0): 0.8542 s (+0.9 %), 1.4261 s (−1.4 %)
+    and 0.9114 s (+0.4 %), each within U_num ≤ 0.45 % and within 0.3 % of the coarse whole
+    record: the 5 % is the issue's bound, not one the coarse mesh needs."""
     case, theory, motion, info = cfd(name, tmp_path,
                                      [f"run.end_time={ROLL_RECORDS[name]}", *FAST_STEP])
     assert motion["roll"][0] == pytest.approx(case.release["heel"], abs=1e-3)  # from equilibrium
