@@ -220,16 +220,20 @@ def test_smaller_steps_is_another_run():
 
 
 def test_a_setting_added_later_leaves_the_runs_before_it():
-    """A field marked ``added`` (mesh.gmsh.layers_3d, 2026-12-03) is out of the stamp at its
-    default, so the runs made before it existed keep theirs; set, it makes another run."""
-    from floatfoam.settings import stamped
+    """A field marked ``added`` (mesh.gmsh.layers_height_3d, 2026-12-03) is out of the stamp
+    at its default, and one at its ``inert`` value (0 prism layers) too, so the runs made
+    before they existed keep theirs. The layers a body given by triangles takes by default
+    (3 since 2026-12-03) are in it: its runs made without them are of other settings."""
+    from floatfoam.settings import TRIANGLE_LAYERS, stamped
 
+    solid = stamped(load_case("ellipsoid_roll").settings)["mesh"]["gmsh"]
+    assert "growth_3d" in solid and "layers_3d" not in solid and "layers_height_3d" not in solid
     case = load_case("superellipsoid_buoy")
-    gmsh = stamped(case.settings)["mesh"]["gmsh"]
-    assert "growth_3d" in gmsh and "layers_3d" not in gmsh and "layers_height_3d" not in gmsh
-    layered = load_case("superellipsoid_buoy", ["mesh.gmsh.layers_3d=3"])
-    assert stamped(layered.settings)["mesh"]["gmsh"]["layers_3d"] == 3
-    assert settings_digest(layered, "coarse") != settings_digest(case, "coarse")
+    assert case.settings.mesh.gmsh.layers_3d == TRIANGLE_LAYERS == 3
+    assert stamped(case.settings)["mesh"]["gmsh"]["layers_3d"] == 3
+    bare = load_case("superellipsoid_buoy", ["mesh.gmsh.layers_3d=0"])
+    assert "layers_3d" not in stamped(bare.settings)["mesh"]["gmsh"]
+    assert settings_digest(bare, "coarse") != settings_digest(case, "coarse")
 
 
 @pytest.mark.parametrize("name, inner, outer", [

@@ -14,7 +14,7 @@ import copy
 import difflib
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -346,11 +346,7 @@ def _build(folder: Path, cfg: dict) -> Case:
                 and (folder / entry["file"]).is_file()):
             raise InputError(f"reference.{key} = {entry!r}: valid is a table with file (a CSV "
                              f"beside case.toml, in {folder}) and source")
-    stages = settings.parse_settings(cfg)
-    if stages.mesh.gmsh.layers_3d and not isinstance(body, shapes.MeshBody):
-        raise InputError(f"mesh.gmsh.layers_3d = {stages.mesh.gmsh.layers_3d}: valid only for "
-                         "a body given by triangles (body.shape stl or implicit); 0 for a "
-                         f"{cfg['body'].get('shape')}")
+    stages = _resolved_layers(settings.parse_settings(cfg), body, cfg["body"].get("shape"))
     tank_depth = stages.domain.depth
     if math.isfinite(depth) and tank_depth is not None and abs(tank_depth - depth) > 1e-9 * depth:
         raise InputError(f"domain.depth = {tank_depth!r} differs from fluid.depth = {depth!r}: "
@@ -359,6 +355,22 @@ def _build(folder: Path, cfg: dict) -> Case:
     return Case(name=folder.name, path=folder, raw=cfg, body=body, mass=mass, cog=cog,
                 gyradius=gyradius, depth=float(depth), release=release, **fluid, **air,
                 settings=stages, reference=reference, **text)
+
+
+def _resolved_layers(stages: settings.Settings, body: shapes.Body,
+                     shape: str) -> settings.Settings:
+    """``mesh.gmsh.layers_3d`` as the mesh takes it: as given, or left out
+    :data:`settings.TRIANGLE_LAYERS` at a body given by triangles and 0 at an exact solid
+    (whose OpenCASCADE mesh takes none: given, it is refused)."""
+    gmsh = stages.mesh.gmsh
+    triangles = isinstance(body, shapes.MeshBody)
+    if gmsh.layers_3d is not None:
+        if gmsh.layers_3d and not triangles:
+            raise InputError(f"mesh.gmsh.layers_3d = {gmsh.layers_3d}: valid only for a body "
+                             f"given by triangles (body.shape stl or implicit); 0 for a {shape}")
+        return stages
+    count = settings.TRIANGLE_LAYERS if triangles else 0
+    return replace(stages, mesh=replace(stages.mesh, gmsh=replace(gmsh, layers_3d=count)))
 
 
 def _mass(cfg: dict, body: shapes.Body, rho: float) -> float:

@@ -8,7 +8,8 @@ interval ≤ end time, ω_min < ω_max). Stages read :class:`Settings`, never th
 
 A field's range is in its metadata: ``minimum`` (exclusive unless ``closed``), ``maximum``
 (inclusive), ``kind`` (float, int, bool, str); ``added`` marks a field added after runs were
-made whose default leaves them as they were (:func:`stamped`).
+made whose default leaves them as they were, ``inert`` the value at which a field changes
+nothing (:func:`stamped` leaves both out of a run's stamp).
 """
 
 from __future__ import annotations
@@ -26,6 +27,13 @@ from floatfoam.errors import InputError, number
 # more memory than a workstation has.
 BYTES_PER_CELL = 2000
 
+# Prism layers at a body given by triangles, in 3D, when the case leaves mesh.gmsh.layers_3d
+# out. Measured 2026-12-03 (coarse, 2 ranks): on the half-immersed sphere meshed in 3D, 3 layers
+# took the first trough from −2.3 % to −0.3 % of the wedge's and its steps from 1,502 to 989;
+# on the superellipsoid buoy's whole record the periods' shortfall against Cummins' halved
+# (heave −5.1 → −3.5 %, roll −2.2 → −1.0 %); 5 layers gave the same (cases/superellipsoid_buoy).
+TRIANGLE_LAYERS = 3
+
 
 def max_cells() -> int:
     """The cells this machine's memory holds at :data:`BYTES_PER_CELL` (a run on other
@@ -37,24 +45,31 @@ def max_cells() -> int:
     return int(memory // BYTES_PER_CELL)
 
 
+_NONE = object()
+
+
 def _spec(default, *, kind=float, minimum=None, closed=False, maximum=None, doc="",
-          added=False):
+          added=False, inert=_NONE):
     """A settings field: its default and the range :func:`_value` checks. ``added``: a field
-    added later, whose default changes nothing that was run before it."""
+    added later, whose default changes nothing that was run before it; ``inert``: a value at
+    which the field changes nothing (as 0 prism layers)."""
     return field(default=default, metadata={"kind": kind, "minimum": minimum, "closed": closed,
-                                            "maximum": maximum, "doc": doc, "added": added})
+                                            "maximum": maximum, "doc": doc, "added": added,
+                                            "inert": inert})
 
 
 def stamped(settings) -> dict:
     """The settings as a run's stamp holds them (``dataclasses.asdict`` without the fields
-    marked ``added`` that are at their default): a field added with a default that changes
-    nothing must not make every run made before it look as of other settings."""
+    marked ``added`` that are at their default, nor those at their ``inert`` value): a field
+    added with a default that changes nothing must not make every run made before it look as
+    of other settings."""
     out = {}
     for item in fields(settings):
         value = getattr(settings, item.name)
         if hasattr(value, "__dataclass_fields__"):
             out[item.name] = stamped(value)
-        elif not (item.metadata.get("added") and value == item.default):
+        elif not ((item.metadata.get("added") and value == item.default)
+                  or value == item.metadata.get("inert", _NONE)):
             out[item.name] = value
     return out
 
@@ -136,9 +151,12 @@ class GmshSettings:
     # interFoam step costs ~11 µs per cell on 2 ranks here: 5 roll periods in ~2 min
     growth: float = _spec(1.2, minimum=1.0, maximum=3.0)
     growth_3d: float = _spec(1.2, minimum=1.0, maximum=3.0)
-    # prism layers at a body given by triangles (3D): their count and their total height as a
-    # fraction of the body's cell size (meshing.domain3d)
-    layers_3d: int = _spec(0, kind=int, minimum=0, closed=True, maximum=20, added=True)
+    # prism layers at a body given by triangles (3D): their count (left out: TRIANGLE_LAYERS at
+    # such a body, 0 at an exact solid; resolved when the case loads) and their total height
+    # as a fraction of the body's cell size (meshing.domain3d)
+    layers_3d: int | None = _spec(None, kind=int, minimum=0, closed=True, maximum=20, inert=0,
+                                  doc="default: 3 at a body given by triangles (stl, "
+                                  "implicit), 0 at an exact solid")
     layers_height_3d: float = _spec(1.0, minimum=0.0, maximum=5.0, added=True)
     margin: float = _spec(0.5, minimum=0.0, maximum=50.0)
 
