@@ -42,9 +42,12 @@ from floatfoam.motion import file_unit, write_motion
 # Celik et al. (2008), J. Fluids Eng. 130:078001, Table 1: three columns, N1, N2, N3 cells of
 # a 2D grid (r from the counts, their eq. 1), φ1..φ3, and what they print: p (2 decimals),
 # φ_ext21 (4 decimals), e_a21, e_ext21 and GCI_fine21 (%, 1 decimal). The PDF is not readable
-# here; these are the table as reproduced in the tests of two independent GCI codes on GitHub
-# (oscar-monsalve/GCI tests/test_2d_*.py, tomrobin-teschner/pyGCS tests/test_GCI.py), which
-# agree. Column 2's e_ext21 is left out: one source gives 0.9 %, the equations 0.847 %.
+# here; the digits are the table as two independent GCI codes hard-code it, which agree where
+# both give them: columns 1 and 2's cells, φ, p, φ_ext21 and GCI in ORNL/cfd-verify
+# tests/test_regression.py (commit 006c9b7), every column with e_a21 and e_ext21 in another
+# code's tests citing the paper's p. 9 (its repository unnamed by our search index; checked
+# 2026-12-03). Column 2's e_ext21 is left out: the table prints 0.9 %, but its own eq. 5 gives
+# |10.8801 − 10.7880| / 10.8801 = 0.847 %, i.e. 0.8 (over φ1 instead, 0.854 %: the likely slip).
 TABLE_1 = [
     # cells, values (fine → coarse), p, φ_ext21, e_a21 %, e_ext21 %, GCI_fine21 %
     ((18000, 8000, 4500), (6.063, 5.972, 5.863), 1.53, 6.1685, 1.5, 1.7, 2.2),
