@@ -29,7 +29,7 @@ BYTES_PER_CELL = 2000
 
 # Prism layers at a body given by triangles, in 3D, when the case leaves mesh.gmsh.layers_3d
 # out. Measured 2026-12-03 (coarse, 2 ranks): on the half-immersed sphere meshed in 3D, 3 layers
-# took the first trough from −2.3 % to −0.3 % of the wedge's and its steps from 1,502 to 989;
+# took the first trough from −2.3 % to −0.5 % of the wedge's and its steps from 1,502 to 989;
 # on the superellipsoid buoy's whole record the periods' shortfall against Cummins' halved
 # (heave −5.1 → −3.5 %, roll −2.2 → −1.0 %); 5 layers gave the same (cases/superellipsoid_buoy).
 TRIANGLE_LAYERS = 3
