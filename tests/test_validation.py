@@ -49,16 +49,19 @@ from floatfoam.motion import file_unit, write_motion
 # 2026-12-03). Column 2's e_ext21 is left out: the table prints 0.9 %, but its own eq. 5 gives
 # |10.8801 − 10.7880| / 10.8801 = 0.847 %, i.e. 0.8 (over φ1 instead, 0.854 %: the likely slip).
 TABLE_1 = [
-    # cells, values (fine → coarse), p, φ_ext21, e_a21 %, e_ext21 %, GCI_fine21 %
-    ((18000, 8000, 4500), (6.063, 5.972, 5.863), 1.53, 6.1685, 1.5, 1.7, 2.2),
-    ((18000, 4500, 980), (10.7880, 10.7250, 10.6050), 0.75, 10.8801, 0.6, None, 1.1),
-    ((18000, 4500, 980), (6.0042, 5.9624, 6.0909), 1.51, 6.0269, 0.7, 0.4, 0.5),
+    # cells, r21 and r32 (3 decimals), values (fine → coarse), p, φ_ext21, e_a21 %, e_ext21 %,
+    # GCI_fine21 %
+    ((18000, 8000, 4500), (1.5, 1.333), (6.063, 5.972, 5.863), 1.53, 6.1685, 1.5, 1.7, 2.2),
+    ((18000, 4500, 980), (2.0, 2.143), (10.7880, 10.7250, 10.6050), 0.75, 10.8801, 0.6, None,
+     1.1),
+    ((18000, 4500, 980), (2.0, 2.143), (6.0042, 5.9624, 6.0909), 1.51, 6.0269, 0.7, 0.4, 0.5),
 ]
 
 
-@pytest.mark.parametrize("cells, values, p, ext, e_a, e_ext, gci_fine", TABLE_1)
-def test_gci_reproduces_celik_table_1(cells, values, p, ext, e_a, e_ext, gci_fine):
+@pytest.mark.parametrize("cells, ratios, values, p, ext, e_a, e_ext, gci_fine", TABLE_1)
+def test_gci_reproduces_celik_table_1(cells, ratios, values, p, ext, e_a, e_ext, gci_fine):
     h = [gci.cell_size(n, 2) for n in cells]
+    assert (round(h[1] / h[0], 3), round(h[2] / h[1], 3)) == ratios
     result = gci.three_grids(*values, h[1] / h[0], h[2] / h[1])
     assert round(result.order, 2) == p
     assert round(result.extrapolated, 4) == ext
