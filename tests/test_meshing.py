@@ -288,7 +288,60 @@ def test_prism_layers_at_a_triangulated_body(tmp_path):
     assert radius.max() > 0.1 + heights[-1] - 1e-3
     quality = convert_and_check(tmp_path / "s.msh", tmp_path / "foam")
     assert quality["mesh_ok"] and quality["cells"] == result["cells"]
-    # a body of OpenCASCADE's has no layers: refused when the case loads
+    # a solid of OpenCASCADE's other than an ellipsoid has no layers: refused when it loads
     with pytest.raises(InputError, match=r"^mesh.gmsh.layers_3d = 3: valid only for a body "
-                                         r"given by triangles .*0 for a sphere$"):
-        load_case("sphere", ["mesh.gmsh.layers_3d=3"])
+                                         r"given by triangles .* or an ellipsoid .*0 for a box$"):
+        load_case("box_bilge", ["mesh.gmsh.layers_3d=3"])
+
+
+ELLIPSOID_3D = """[body]
+shape = "ellipsoid"
+semi_axes = [0.2, 0.15, 0.1]
+[mass]
+density = 500.0
+cog = [0.0, 0.0, -0.02]
+gyradius = [0.1, 0.1, 0.1]
+[fluid]
+rho = 1000.0
+nu = 1.0e-6
+g = 9.81
+[release]
+heel = 10.0
+[mesh.gmsh]
+body_cells_3d = 6
+layers_3d = 3
+"""
+
+
+def _group_nodes(path, name):
+    """The coordinates of the nodes of a physical group (a patch) of an MSH file, (n, 3)."""
+    import gmsh
+
+    from floatfoam.meshing import gmshio
+
+    with gmshio.session("read"):
+        gmsh.open(str(path))
+        tag = next(t for d, t in gmsh.model.getPhysicalGroups(2)
+                   if gmsh.model.getPhysicalName(d, t) == name)
+        return gmsh.model.mesh.getNodesForPhysicalGroup(2, tag)[1].reshape(-1, 3)
+
+
+@pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")
+def test_prism_layers_at_an_ellipsoid_in_the_half_domain(tmp_path):
+    """An ellipsoid heeled 10° (its half domain x ≥ 0) with 3 layers: its half surface as
+    OpenCASCADE meshes it, extruded along its exact normals, so the layers' side faces lie in
+    the symmetry plane (gmsh's own normals, from the triangles on one side, leaned up to
+    0.37 mm out of it when this was built) and a prism stands on every body face."""
+    from floatfoam.foam.meshcheck import convert_and_check
+
+    (tmp_path / "case.toml").write_text(ELLIPSOID_3D)
+    case = load_case(str(tmp_path))
+    result = build_domain(case, "coarse", "3d-half", path=tmp_path / "e.msh")
+    prisms = _prism_nodes(tmp_path / "e.msh")
+    assert result["cell_types"]["Prism"] == len(prisms) == 3 * result["patches"]["body"]
+    assert prisms[..., 0].min() > -1e-12  # all on the side x ≥ 0
+    plane = _group_nodes(tmp_path / "e.msh", "symmetry")
+    assert np.abs(plane[:, 0]).max() < 1e-12  # the layers' side faces among them
+    assert (np.abs(prisms[..., 0]) < 1e-12).any()  # ... which the layers reach
+    quality = convert_and_check(tmp_path / "e.msh", tmp_path / "foam")
+    assert quality["mesh_ok"] and quality["cells"] == result["cells"]

@@ -360,14 +360,15 @@ def _build(folder: Path, cfg: dict) -> Case:
 def _resolved_layers(stages: settings.Settings, body: shapes.Body,
                      shape: str) -> settings.Settings:
     """``mesh.gmsh.layers_3d`` as the mesh takes it: as given, or left out
-    :data:`settings.TRIANGLE_LAYERS` at a body given by triangles and 0 at an exact solid
-    (whose OpenCASCADE mesh takes none: given, it is refused)."""
+    :data:`settings.TRIANGLE_LAYERS` at a body given by triangles and 0 at an exact solid. An
+    ellipsoid takes them when given (meshing.domain3d); any other solid is refused them."""
     gmsh = stages.mesh.gmsh
     triangles = isinstance(body, shapes.MeshBody)
     if gmsh.layers_3d is not None:
-        if gmsh.layers_3d and not triangles:
+        if gmsh.layers_3d and not (triangles or isinstance(body, shapes.Ellipsoid)):
             raise InputError(f"mesh.gmsh.layers_3d = {gmsh.layers_3d}: valid only for a body "
-                             f"given by triangles (body.shape stl or implicit); 0 for a {shape}")
+                             "given by triangles (body.shape stl or implicit) or an ellipsoid "
+                             f"(sphere, ellipsoid); 0 for a {shape}")
         return stages
     count = settings.TRIANGLE_LAYERS if triangles else 0
     return replace(stages, mesh=replace(stages.mesh, gmsh=replace(gmsh, layers_3d=count)))

@@ -18,11 +18,17 @@ triangles (``stl``, ``implicit``) are classified into smooth patches (feature an
 around them with gmsh's built-in kernel; an implicit body's marching-cubes triangles are first
 relaxed onto F = 0 (:func:`relax_on_surface`), their slivers defeat the reparametrisation.
 
-Prism layers (``mesh.gmsh.layers_3d``, bodies given by triangles): the body's surface mesh
-extruded outwards along its normals (gmsh's built-in ``extrudeBoundaryLayer``), each layer
-:data:`LAYER_GROWTH` times the one below, together ``layers_height_3d`` × h₀; the tetrahedra
-start on the outer layer. Their cost is small (3 layers: +2 % cells on the 3D sphere), and
-they stand in for the first tetrahedra at the body, where the free surface meets it.
+Prism layers (``mesh.gmsh.layers_3d``, 3 by default at a body given by triangles, none at an
+exact solid: settings.TRIANGLE_LAYERS): the body's surface mesh extruded outwards along its
+normals (gmsh's built-in ``extrudeBoundaryLayer``), each layer :data:`LAYER_GROWTH` times the
+one below, together ``layers_height_3d`` × h₀; the tetrahedra start on the outer layer. Their
+cost is small (3 layers: +2 % cells on the 3D sphere), and they stand in for the first
+tetrahedra at the body, where the free surface meets it. An ellipsoid takes them too when the
+case asks (``layers_3d`` > 0): OpenCASCADE meshes its surface (its half x ≥ 0 or y ≥ 0 in a
+half domain) at the same sizes, and that mesh takes the discrete route with the ellipsoid's
+exact normals (:func:`_solid_surface`), which at the symmetry plane lie in it, so the layers'
+side faces do too and join the plane's symmetry patch; gmsh's own normals there, from the
+triangles on one side only, leaned 0.4 mm out of it.
 """
 
 from __future__ import annotations
@@ -58,6 +64,9 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
     from floatfoam.meshing.planar import summary
 
     body = case.body
+    surface = None
+    if spec.layers_3d and not isinstance(body, bodies.MeshBody):  # its own gmsh session first
+        surface = _solid_surface(body, spec, half)
     with gmshio.session(f"{case.name}-3d", verbosity=VERBOSITY) as gmsh:
         if isinstance(body, bodies.MeshBody):
             vertices = body.vertices
@@ -66,6 +75,11 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
                 vertices = relax_on_surface(vertices, body.faces, func, spec.span)
             body_surfaces, volume, layers = _discrete_body(gmsh, vertices, body.faces, where,
                                                            tank, spec)
+        elif spec.layers_3d:  # an ellipsoid's surface meshed by OpenCASCADE, then as triangles
+            vertices, faces = surface
+            body_surfaces, volume, layers = _discrete_body(
+                gmsh, vertices, faces, where, tank, spec, half,
+                normals=_ellipsoid_normals(body, vertices))
         else:
             body_surfaces, volume = _solid_body(gmsh, body, where, tank, spec, half)
             layers = Layers()
@@ -103,6 +117,56 @@ def _solid_body(gmsh, body, where: Pose, tank: Tank, spec: MeshSpec,
     return [tag for tag in faces if tag not in walls], volume
 
 
+def _solid_surface(body, spec: MeshSpec, half: str | None) -> tuple[np.ndarray, np.ndarray]:
+    """An ellipsoid's surface as OpenCASCADE meshes it at the 3D sizes (h₀, finer where it
+    turns fast, as in :func:`_solid_body`), with ``half`` only its half ``half`` ≥ 0 (the
+    cut's nodes exactly on the plane): (vertices, outward faces), body frame."""
+    from floatfoam.meshing.body_surface import size_options
+
+    if not isinstance(body, bodies.Ellipsoid):
+        raise TypeError(f"prism layers at a {type(body).__name__}: only at an ellipsoid or "
+                        "a body given by triangles")
+    with gmshio.session("surface", verbosity=VERBOSITY) as gmsh:
+        occ = gmsh.model.occ
+        solid = sections.add_solid(body)
+        if half:
+            k = "xy".index(half)
+            big = 2.0 * float(np.max(body.axes))
+            corner = [-big, -big, -big]
+            corner[k] = 0.0
+            extent = [2 * big] * 3
+            extent[k] = big
+            out, _ = occ.intersect([(3, solid)], [(3, occ.addBox(*corner, *extent))])
+            solid = out[0][1]
+        occ.synchronize()
+        size_options(gmsh, spec.body_size_3d, spec.curvature_points)
+        gmsh.model.mesh.generate(2)
+        faces = [abs(tag) for _, tag in gmsh.model.getBoundary([(3, solid)], oriented=False)]
+        if half:  # the cut face is the symmetry plane's, not the body's
+            cut = set()
+            for tag in faces:
+                box = gmsh.model.getBoundingBox(2, tag)
+                if max(abs(box[k]), abs(box[k + 3])) < PLANE_EPS:
+                    cut.add(tag)
+            faces = [tag for tag in faces if tag not in cut]
+        vertices, triangles = gmshio.surface_triangles(faces)
+    if half:
+        vertices[np.abs(vertices[:, k]) < PLANE_EPS, k] = 0.0
+    # outward: away from the centre, about which an ellipsoid is star-shaped
+    corners = vertices[triangles]
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    if float(np.sum(normal * corners.mean(axis=1))) < 0.0:
+        triangles = triangles[:, ::-1].copy()
+    return vertices, triangles
+
+
+def _ellipsoid_normals(body, vertices: np.ndarray) -> np.ndarray:
+    """The exact outward unit normals of an ellipsoid at body-frame points on it: ∇ of
+    (x/a)² + (y/b)² + (z/c)², normalised."""
+    gradient = vertices / body.axes**2
+    return gradient / np.linalg.norm(gradient, axis=1)[:, None]
+
+
 def relax_on_surface(vertices: np.ndarray, faces: np.ndarray, func, size: float,
                      iterations: int = 20) -> np.ndarray:
     """Marching-cubes triangles made fit for remeshing: each sweep moves every vertex half-way
@@ -131,10 +195,12 @@ def relax_on_surface(vertices: np.ndarray, faces: np.ndarray, func, size: float,
 
 @dataclass(frozen=True)
 class Layers:
-    """The prism layers' volumes and their outer surfaces (none without layers)."""
+    """The prism layers' volumes, their outer surfaces and, in a half domain, their side
+    faces in the symmetry plane (none without layers)."""
 
     volumes: tuple[int, ...] = ()
     tops: frozenset[int] = frozenset()
+    sides: frozenset[int] = frozenset()
 
 
 def layer_heights(spec: MeshSpec) -> list[float]:
@@ -145,10 +211,15 @@ def layer_heights(spec: MeshSpec) -> list[float]:
     return [scale * sum(steps[:k + 1]) for k in range(len(steps))]
 
 
-def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank,
-                   spec: MeshSpec) -> tuple[list[int], int, Layers]:
+def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank, spec: MeshSpec,
+                   half: str | None = None, normals: np.ndarray | None = None
+                   ) -> tuple[list[int], int, Layers]:
     """A triangulated body as reparametrised discrete surfaces, its prism layers if
-    ``spec.layers_3d``, and the tank around them."""
+    ``spec.layers_3d``, and the tank around them (its half ``half`` ≥ 0, the body's half
+    surface cut out of that plane). ``normals`` (body frame, one per vertex): the direction
+    of the layers, else gmsh's from the triangles."""
+    if normals is not None:
+        normals = place(vertices + normals, where) - place(vertices, where)
     vertices = place(vertices, where)
     _check_room(vertices.min(axis=0), vertices.max(axis=0), tank, spec)
     surface = gmsh.model.addDiscreteEntity(2)
@@ -162,24 +233,61 @@ def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank,
     geo = gmsh.model.geo
     layers, inner = Layers(), body_surfaces
     if spec.layers_3d:  # extruded along the body mesh's normals, outwards (outward triangles)
+        view = -1
+        if normals is not None:  # given normals, as a view gmsh finds by position
+            view = _normals_view(gmsh, vertices, faces, normals)
         made = geo.extrudeBoundaryLayer([(2, tag) for tag in body_surfaces],
-                                        [1] * spec.layers_3d, layer_heights(spec), True)
+                                        [1] * spec.layers_3d, layer_heights(spec), True,
+                                        False, view)
         tops = [made[k - 1][1] for k in range(1, len(made)) if made[k][0] == 3]
-        layers = Layers(tuple(tag for dim, tag in made if dim == 3), frozenset(tops))
+        sides = {tag for dim, tag in made if dim == 2} - set(tops)
+        layers = Layers(tuple(tag for dim, tag in made if dim == 3), frozenset(tops),
+                        frozenset(sides))
         inner = tops
-    x, y, z0, z1 = tank.half_length, tank.half_width, -tank.depth, tank.air_height
-    corners = [[geo.addPoint(sx * x, sy * y, z) for sx, sy in ((-1, -1), (1, -1), (1, 1),
-                                                                (-1, 1))] for z in (z0, z1)]
+        geo.synchronize()  # the tops' edges known to the model: the rim below
+    x0 = 0.0 if half == "x" else -tank.half_length
+    y0 = 0.0 if half == "y" else -tank.half_width
+    x1, y1, z0, z1 = tank.half_length, tank.half_width, -tank.depth, tank.air_height
+    corners = [[geo.addPoint(x, y, z) for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
+               for z in (z0, z1)]
     rings = [[geo.addLine(c[k], c[(k + 1) % 4]) for k in range(4)] for c in corners]
     posts = [geo.addLine(corners[0][k], corners[1][k]) for k in range(4)]
     faces = [geo.addPlaneSurface([geo.addCurveLoop(rings[0])]),
              geo.addPlaneSurface([geo.addCurveLoop(rings[1])])]
+    plane = {"x": 3, "y": 0}.get(half)  # side k runs from corner k to k + 1: x = x0 is the 4th
     for k in range(4):
-        loop = geo.addCurveLoop([rings[0][k], posts[(k + 1) % 4], -rings[1][k], -posts[k]])
-        faces.append(geo.addPlaneSurface([loop]))
-    volume = geo.addVolume([geo.addSurfaceLoop(faces), geo.addSurfaceLoop(inner)])
+        loops = [geo.addCurveLoop([rings[0][k], posts[(k + 1) % 4], -rings[1][k], -posts[k]])]
+        if k == plane:  # the body's (or its layers') cut out of the symmetry plane
+            loops.append(geo.addCurveLoop(_rim(gmsh, inner), reorient=True))
+        faces.append(geo.addPlaneSurface(loops))
+    if half:
+        volume = geo.addVolume([geo.addSurfaceLoop(faces + inner)])
+    else:
+        volume = geo.addVolume([geo.addSurfaceLoop(faces), geo.addSurfaceLoop(inner)])
     geo.synchronize()
     return body_surfaces, volume, layers
+
+
+def _rim(gmsh, surfaces: list[int]) -> list[int]:
+    """The curves that bound ``surfaces`` once (those two of them share are inside): an open
+    half body's, or its layers', edge in the symmetry plane."""
+    count: dict[int, int] = {}
+    for _, curve in gmsh.model.getBoundary([(2, tag) for tag in surfaces], combined=False,
+                                           oriented=False):
+        count[abs(curve)] = count.get(abs(curve), 0) + 1
+    return sorted(curve for curve, n in count.items() if n == 1)
+
+
+def _normals_view(gmsh, vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray) -> int:
+    """A list-data view of vectors on the triangles (gmsh's "VT": each triangle's corners,
+    then a vector at each): where the boundary layer's extrusion looks its normals up, by
+    position, on the surface as it will be remeshed. Returns the view's index."""
+    corners, vectors = vertices[faces], normals[faces]  # (T, 3 corners, 3)
+    data = np.concatenate([corners.transpose(0, 2, 1).reshape(len(faces), 9),
+                           vectors.reshape(len(faces), 9)], axis=1)
+    view = gmsh.view.add("layer normals")
+    gmsh.view.addListData(view, "VT", len(faces), data.ravel().tolist())
+    return gmsh.view.getIndex(view)
 
 
 PLANE_EPS = 2e-5  # m: OpenCASCADE pads bounding boxes by up to ~1e-5 m (a 2 m tank's 2e-6
@@ -271,6 +379,8 @@ def _physical_groups(gmsh, volume: int, body_surfaces: list[int], tank: Tank,
             groups["bottom" if z0 < 0 else "atmosphere"].append(tag)
         else:
             groups["sides"].append(tag)
+    if half:  # the layers' side faces bound their volumes, not the tank's: in the plane
+        groups["symmetry"].extend(sorted(layers.sides))
     named = {name: (2, tags) for name, tags in groups.items()}
     named["fluid"] = (3, [volume, *layers.volumes])
     for name, (dim, tags) in named.items():
