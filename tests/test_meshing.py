@@ -343,5 +343,12 @@ def test_prism_layers_at_an_ellipsoid_in_the_half_domain(tmp_path):
     plane = _group_nodes(tmp_path / "e.msh", "symmetry")
     assert np.abs(plane[:, 0]).max() < 1e-12  # the layers' side faces among them
     assert (np.abs(prisms[..., 0]) < 1e-12).any()  # ... which the layers reach
+    # the body's nodes, remeshed on OpenCASCADE's triangles, moved back onto the ellipsoid
+    from floatfoam.bodies.geometry import rotation
+
+    where = levels.pose(case, "release")
+    local = (_group_nodes(tmp_path / "e.msh", "body") - [0.0, 0.0, where.z_c]) \
+        @ rotation(where.heel, where.trim)
+    assert np.abs(np.sum((local / case.body.axes) ** 2, axis=1) - 1.0).max() < 1e-9
     quality = convert_and_check(tmp_path / "e.msh", tmp_path / "foam")
     assert quality["mesh_ok"] and quality["cells"] == result["cells"]
