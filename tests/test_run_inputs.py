@@ -88,6 +88,10 @@ def test_body_resolution_bound_names_the_memory():
     (["run", "box_bilge", "--set", 'run.time_scheme="CrankNicolson 2"'],
      ["run.time_scheme", "0 ≤ ψ ≤ 1"]),
     (["run", "box_bilge", "--set", 'run.time_scheme="backward"'], ["run.time_scheme", "Euler"]),
+    (["run", "sphere", "--set", "mesh.gmsh.layers_3d=3"],  # its heave meshes a wedge
+     ["mesh.gmsh.layers_3d = 3", "3D domains only", "valid is 0"]),
+    (["run", "superellipsoid_buoy", "--set", "mesh.gmsh.layers_3d=21"],
+     ["mesh.gmsh.layers_3d = 21", "whole number 0 ≤ x ≤ 20"]),
 ])
 def test_errors_are_one_line_exit_2(tmp_path, capsys, args, words):
     (tmp_path / "case.toml").write_text("[fluid]\nrho = 1000.0\n")

@@ -69,9 +69,14 @@ def stamped(settings) -> dict:
         if hasattr(value, "__dataclass_fields__"):
             out[item.name] = stamped(value)
         elif not ((item.metadata.get("added") and value == item.default)
-                  or value == item.metadata.get("inert", _NONE)):
+                  or _is_inert(value, item.metadata.get("inert", _NONE))):
             out[item.name] = value
     return out
+
+
+def _is_inert(value, inert) -> bool:
+    """``value`` is the field's inert one, of its type too (False is not 0 layers)."""
+    return type(value) is type(inert) and value == inert
 
 
 MESH_POSES = ("release", "equilibrium")
@@ -151,12 +156,13 @@ class GmshSettings:
     # interFoam step costs ~11 µs per cell on 2 ranks here: 5 roll periods in ~2 min
     growth: float = _spec(1.2, minimum=1.0, maximum=3.0)
     growth_3d: float = _spec(1.2, minimum=1.0, maximum=3.0)
-    # prism layers at a body given by triangles (3D): their count (left out: TRIANGLE_LAYERS at
-    # such a body, 0 at an exact solid; resolved when the case loads) and their total height
-    # as a fraction of the body's cell size (meshing.domain3d)
+    # prism layers at the body in 3D (a body given by triangles, or an ellipsoid): their count
+    # (left out: TRIANGLE_LAYERS at a body given by triangles, 0 at an exact solid; resolved
+    # when the case loads) and their total height in body cells (meshing.domain3d)
     layers_3d: int | None = _spec(None, kind=int, minimum=0, closed=True, maximum=20, inert=0,
                                   doc="default: 3 at a body given by triangles (stl, "
-                                  "implicit), 0 at an exact solid")
+                                  "implicit), 0 at an exact solid (an ellipsoid takes them "
+                                  "when given)")
     layers_height_3d: float = _spec(1.0, minimum=0.0, maximum=5.0, added=True)
     margin: float = _spec(0.5, minimum=0.0, maximum=50.0)
 
@@ -266,10 +272,11 @@ def _value(value, name: str, meta: dict):
     result = number(value, name, minimum=None if meta["closed"] else low,
                     integer=kind is int)
     if meta["closed"] and low is not None and result < low:
-        raise InputError(f"{name} = {value!r}: valid is a number ≥ {low:g}")
+        what = "a whole number" if kind is int else "a number"
+        raise InputError(f"{name} = {value!r}: valid is {what} ≥ {low:g}")
     high = meta["maximum"]
     if high is not None and result > high:
-        lo_text = "" if low is None else f"{low:g} < "
+        lo_text = "" if low is None else f"{low:g} {'≤' if meta['closed'] else '<'} "
         what = "a whole number" if kind is int else "a number"
         cells = f" ({memory_text(result)} in one row of cells alone)" \
             if name.startswith("mesh.cells_") else ""

@@ -92,10 +92,11 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
     mesher = case.settings.mesh.mesher
     if mesher == "ogrid":
         return _ogrid_plan(case, level, release, local)
-    from floatfoam.meshing.domains import default_kind, half_plane
+    from floatfoam.meshing.domains import check_layers, default_kind, half_plane
     from floatfoam.meshing.levels import body_extents, tank
 
     kind = default_kind(case, release)
+    check_layers(case, kind)
     plane = half_plane(case, release) if kind == "3d-half" else None
     box = tank(case)
     share = {"2d": box.thickness / (case.body.length or box.thickness),

@@ -55,10 +55,18 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     title, description, and the name of the case it extends: its tables are in) nor its
     [reference] measurements: adding a measurement must not make a finished run look
     foreign."""
+    stamp = settings.stamped(case.settings)
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()
                    if k not in ("title", "description", "extends")}
-    resolved = {"settings": settings.stamped(case.settings), "release": case.release,
+    for table in settings.TABLES:  # a key the stamp leaves out (0 prism layers, written out)
+        if isinstance(raw.get(table), dict):  # is left out of the file's copy too
+            kept = _stamped_keys(raw[table], stamp[table])
+            if kept or not raw[table]:
+                raw[table] = kept
+            else:  # emptied by it: as if never written
+                del raw[table]
+    resolved = {"settings": stamp, "release": case.release,
                 "mass": case.mass, "cog": case.cog, "gyradius": case.gyradius, "rho": case.rho,
                 "nu": case.nu, "g": case.g, "depth": case.depth, "rho_air": case.rho_air,
                 "nu_air": case.nu_air}
@@ -70,6 +78,22 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
             digest.update(path.read_bytes())
     digest.update(str(solver_path(case, check=False)).encode())
     return digest.hexdigest()[:16]
+
+
+def _stamped_keys(values: dict, stamped: dict) -> dict:
+    """A settings table of the case file with only the keys its stamp keeps (nested tables
+    alike; one emptied by that is left out, one written empty is kept)."""
+    kept = {}
+    for key, value in values.items():
+        if key not in stamped:
+            continue
+        if isinstance(value, dict):
+            inner = _stamped_keys(value, stamped[key])
+            if value and not inner:
+                continue
+            value = inner
+        kept[key] = value
+    return kept
 
 
 def _plain(value):

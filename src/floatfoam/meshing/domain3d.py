@@ -84,12 +84,14 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
         else:
             body_surfaces, volume = _solid_body(gmsh, body, where, tank, spec, half)
             layers = Layers()
-        # curvature sizing on reparametrised triangles costs minutes: exact solids only
+        # curvature sizing on reparametrised triangles costs minutes (the pontoon's, the
+        # superellipsoid's): exact solids only, the layered ellipsoid's remeshed surface too
+        # (2 s for ellipsoid_roll's coarse mesh)
         _size_field(gmsh, body_surfaces, spec, tank,
                     curvature=not isinstance(body, bodies.MeshBody))
         gmsh.model.mesh.generate(3)
         if surface is not None:  # remeshed on OpenCASCADE's triangles: back onto the solid
-            _onto_ellipsoid(gmsh, body, body_surfaces, where)
+            _onto_ellipsoid(gmsh, body, body_surfaces, where, layer_heights(spec)[0])
         groups = _physical_groups(gmsh, volume, body_surfaces, tank, half, layers)
         gmshio.write_msh22(path)
         result = summary(gmsh, groups, path)
@@ -170,7 +172,7 @@ def _ellipsoid_normals(body, vertices: np.ndarray) -> np.ndarray:
     return gradient / np.linalg.norm(gradient, axis=1)[:, None]
 
 
-def _onto_ellipsoid(gmsh, body, surfaces: list[int], where: Pose) -> None:
+def _onto_ellipsoid(gmsh, body, surfaces: list[int], where: Pose, first: float) -> None:
     """Move the nodes of the body's surfaces, remeshed on OpenCASCADE's triangles, onto the
     exact ellipsoid along the rays from its centre (by ~h²/(8R), a fraction of a millimetre;
     nodes in a symmetry plane stay in it). On `ellipsoid`'s coarse mesh the immersed volume's
@@ -184,7 +186,14 @@ def _onto_ellipsoid(gmsh, body, surfaces: list[int], where: Pose) -> None:
             moved[int(node)] = point
     nodes = np.array(list(moved))
     local = (np.array(list(moved.values())) - shift) @ turn  # body frame
-    local /= np.sqrt(np.sum((local / body.axes) ** 2, axis=1))[:, None]
+    onto = local / np.sqrt(np.sum((local / body.axes) ** 2, axis=1))[:, None]
+    move = float(np.max(np.linalg.norm(onto - local, axis=1)))
+    if move > 0.5 * first:  # towards the layers, whose tops stay: the first would fold
+        raise InputError(f"mesh.gmsh.layers_height_3d: the first prism layer, {first * 1e3:.3g} "
+                         f"mm, is too thin for the body's nodes, which move {move * 1e3:.3g} mm "
+                         "onto the ellipsoid; valid: a first layer over twice that (fewer "
+                         "mesh.gmsh.layers_3d or a larger layers_height_3d)")
+    local = onto
     for node, point in zip(nodes, local @ turn.T + shift, strict=True):
         gmsh.model.mesh.setNode(int(node), point.tolist(), [])
 
@@ -316,6 +325,13 @@ PLANE_EPS = 2e-5  # m: OpenCASCADE pads bounding boxes by up to ~1e-5 m (a 2 m t
                   # missed the symmetry plane)
 
 
+def _in_plane(gmsh, surface: int, axis: str, tank: Tank) -> bool:
+    """Every node of a meshed ``surface`` lies in the plane ``axis`` = 0."""
+    coords = gmsh.model.mesh.getNodes(2, surface, includeBoundary=True)[1].reshape(-1, 3)
+    eps = max(1e-6 * tank.half_length, PLANE_EPS)
+    return len(coords) > 0 and float(np.abs(coords[:, "xy".index(axis)]).max()) < eps
+
+
 def _plane_faces(gmsh, axis: str, tank: Tank) -> set[int]:
     """The faces lying in the plane ``axis`` = 0 ("x" or "y")."""
     eps = max(1e-6 * tank.half_length, PLANE_EPS)
@@ -401,8 +417,9 @@ def _physical_groups(gmsh, volume: int, body_surfaces: list[int], tank: Tank,
             groups["bottom" if z0 < 0 else "atmosphere"].append(tag)
         else:
             groups["sides"].append(tag)
-    if half:  # the layers' side faces bound their volumes, not the tank's: in the plane
-        groups["symmetry"].extend(sorted(layers.sides))
+    if half:  # the layers' side faces in the plane (not those between two patches' layers)
+        groups["symmetry"].extend(tag for tag in sorted(layers.sides)
+                                  if _in_plane(gmsh, tag, half, tank))
     named = {name: (2, tags) for name, tags in groups.items()}
     named["fluid"] = (3, [volume, *layers.volumes])
     for name, (dim, tags) in named.items():

@@ -48,6 +48,16 @@ def half_plane(case, where: Pose) -> str | None:
     return None
 
 
+def check_layers(case, kind: str) -> None:
+    """Prism layers (``mesh.gmsh.layers_3d``) are made in 3D domains only: asked for in a
+    2D slab or a wedge they are refused, not silently left out."""
+    layers = case.settings.mesh.gmsh.layers_3d
+    if layers and kind not in ("3d", "3d-half"):
+        raise InputError(f"mesh.gmsh.layers_3d = {layers}: prism layers are made in 3D domains "
+                         f"only, and {case.name} meshes a {kind} domain at its release; valid "
+                         "is 0")
+
+
 def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release",
                  path: Path | None = None, equilibrium=None) -> dict:
     """Mesh the fluid domain of ``case`` at ``level`` with the body at a pose and write it
@@ -73,6 +83,7 @@ def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release
 
     path = Path(path) if path else case_build_dir(case.name) / "mesh" / level / \
         f"domain_{kind}.msh"
+    check_layers(case, kind)
     half = half_plane(case, where) if kind == "3d-half" else None
     if kind == "3d-half" and half is None:
         raise InputError(f"--kind 3d-half: {case.name} keeps no symmetry plane at this pose (an "

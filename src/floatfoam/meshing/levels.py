@@ -51,8 +51,8 @@ class MeshSpec:
     body_size_3d : same for 3D volume meshes
     curvature_points : cells per 2π of turning, curvature_cells r^index
     growth, growth_3d : grading away from the body (coarse values; see the module docstring)
-    layers_3d, layers_height_3d : prism layers at a triangulated body in 3D: their count (0:
-        none) and total height (m)
+    layers_3d, layers_height_3d : prism layers at the body in 3D (a body given by triangles,
+        or an ellipsoid): their count (0: none) and total height (m)
     margin : half-thickness of the core block around the body, m
     """
 
