@@ -327,22 +327,24 @@ def _group_nodes(path, name):
 
 
 @pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")
-def test_prism_layers_at_an_ellipsoid_in_the_half_domain(tmp_path):
-    """An ellipsoid heeled 10° (its half domain x ≥ 0) with 3 layers: its half surface as
-    OpenCASCADE meshes it, extruded along its exact normals, so the layers' side faces lie in
-    the symmetry plane (gmsh's own normals, from the triangles on one side, leaned up to
-    0.37 mm out of it when this was built) and a prism stands on every body face."""
+@pytest.mark.parametrize("release, axis", [("heel = 10.0", 0), ("trim = 5.0", 1)])
+def test_prism_layers_at_an_ellipsoid_in_the_half_domain(tmp_path, release, axis):
+    """An ellipsoid heeled 10° (its half domain x ≥ 0) or trimmed 5° (y ≥ 0) with 3 layers:
+    its half surface as OpenCASCADE meshes it, extruded along its exact normals, so the
+    layers' side faces lie in the symmetry plane (gmsh's own normals, from the triangles on
+    one side, leaned up to 0.37 mm out of it when this was built) and a prism stands on every
+    body face."""
     from floatfoam.foam.meshcheck import convert_and_check
 
-    (tmp_path / "case.toml").write_text(ELLIPSOID_3D)
+    (tmp_path / "case.toml").write_text(ELLIPSOID_3D.replace("heel = 10.0", release))
     case = load_case(str(tmp_path))
     result = build_domain(case, "coarse", "3d-half", path=tmp_path / "e.msh")
     prisms = _prism_nodes(tmp_path / "e.msh")
     assert result["cell_types"]["Prism"] == len(prisms) == 3 * result["patches"]["body"]
-    assert prisms[..., 0].min() > -1e-12  # all on the side x ≥ 0
+    assert prisms[..., axis].min() > -1e-12  # all on the side x ≥ 0 (y ≥ 0)
     plane = _group_nodes(tmp_path / "e.msh", "symmetry")
-    assert np.abs(plane[:, 0]).max() < 1e-12  # the layers' side faces among them
-    assert (np.abs(prisms[..., 0]) < 1e-12).any()  # ... which the layers reach
+    assert np.abs(plane[:, axis]).max() < 1e-12  # the layers' side faces among them
+    assert (np.abs(prisms[..., axis]) < 1e-12).any()  # ... which the layers reach
     # the body's nodes, remeshed on OpenCASCADE's triangles, moved back onto the ellipsoid
     from floatfoam.bodies.geometry import rotation
 
