@@ -361,13 +361,14 @@ def test_triaxial_ellipsoid_pitch_3d(tmp_path):
 
 def test_a_users_stl_body_rolls_with_its_added_inertia(tmp_path):
     """A body a user brings as an STL file (cases/stl_pontoon: a 1.2 m pontoon of flattened-
-    octagon section) heeled 8°, in the whole 3D tank (its STL's flat patches remeshed by gmsh;
-    155,916 tetrahedra at the coarse level). On a 0.1 s record (the first sixth of a roll
-    period; its whole record, 3.6 s, runs under `make stl_pontoon`): stable, starting at 8°,
-    and falling back as the fluid's inertia allows — the roll's drop over 0.1 s within 10 % of
-    Cummins' model (measured 2.54° against 2.39°, +6 %; at release the motion is set by the
-    added inertia at infinite frequency), where the body without added inertia (the memoir's
-    linear model) would fall 3.75°."""
+    octagon section) heeled 8°, in the whole 3D tank (its STL's flat patches remeshed by gmsh,
+    three prism layers at the body by default since 2026-12-03: 168,484 cells at the coarse
+    level). On a 0.1 s record (the first sixth of a roll period; its whole record, 3.6 s, runs
+    under `make stl_pontoon`): stable, starting at 8°, and falling back as the fluid's inertia
+    allows — the roll's drop over 0.1 s within 10 % of Cummins' model (measured 2.52° against
+    2.39°, +5.4 %, on the whole record's first 0.1 s; without layers 2.54°, +6 %; at release
+    the motion is set by the added inertia at infinite frequency), where the body without
+    added inertia (the memoir's linear model) would fall 3.75°."""
     case, _, motion, info = cfd("stl_pontoon", tmp_path, ["run.end_time=0.1"])
     assert info["mesh"] == "3d"
     assert motion["roll"][0] == pytest.approx(8.0, abs=1e-3)
