@@ -230,6 +230,15 @@ def test_gmsh_leaves_the_signal_handlers():
     assert done.stdout.split("\n")[:3] == ["SIGPIPE ignored", "raised SIGTERM", "raised SIGHUP"]
 
 
+# small 3D cases with prism layers: a body, its mass and release, then what they share
+LAYERED_3D = """[fluid]
+rho = 1000.0
+nu = 1.0e-6
+g = 9.81
+[mesh.gmsh]
+body_cells_3d = 6
+layers_3d = 3
+"""
 SPHERE_3D = """[body]
 shape = "implicit"
 expression = "x**2 + y**2 + z**2 - 0.01"
@@ -239,16 +248,9 @@ resolution = 40
 density = 500.0
 cog = [0.0, 0.0, -0.02]
 gyradius = [0.06325, 0.06325, 0.06325]
-[fluid]
-rho = 1000.0
-nu = 1.0e-6
-g = 9.81
 [release]
 heave = 0.01
-[mesh.gmsh]
-body_cells_3d = 6
-layers_3d = 3
-"""
+""" + LAYERED_3D
 
 
 def _prism_nodes(path):
@@ -301,16 +303,9 @@ semi_axes = [0.2, 0.15, 0.1]
 density = 500.0
 cog = [0.0, 0.0, -0.02]
 gyradius = [0.1, 0.1, 0.1]
-[fluid]
-rho = 1000.0
-nu = 1.0e-6
-g = 9.81
 [release]
 heel = 10.0
-[mesh.gmsh]
-body_cells_3d = 6
-layers_3d = 3
-"""
+""" + LAYERED_3D
 
 
 def _group_nodes(path, name):
