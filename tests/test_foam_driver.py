@@ -33,6 +33,19 @@ def test_log_excerpt_parses_steps_and_body_state():
     assert watcher.fatal is None
 
 
+def test_a_stopped_solvers_last_step_is_kept_only_if_finished():
+    """A solver stopped mid-step leaves a step without its ExecutionTime line: that step's state
+    is an unfinished outer iteration's and is not recorded; a finished last step is."""
+    text = EXCERPT.read_text()
+    cut = text.rindex("ExecutionTime")
+    watcher = LogWatcher()
+    steps = watcher.feed(text[:cut]) + watcher.close_finished()
+    assert [s.time for s in steps] == pytest.approx([0.355, 0.36])
+    watcher = LogWatcher()
+    steps = watcher.feed(text) + watcher.close_finished()
+    assert [s.time for s in steps] == pytest.approx([0.355, 0.36, 0.365])
+
+
 def test_fatal_lines_are_caught_but_not_the_fpe_banner():
     watcher = LogWatcher()
     watcher.feed("trapFpe: Floating point exception trapping enabled (FOAM_SIGFPE).\n")

@@ -81,6 +81,7 @@ class LogWatcher:
     _pending: str = ""
     _courant: float | None = None
     _delta_t: float | None = None
+    _current_done: bool = False  # the current step printed its ExecutionTime: it is whole
 
     def feed(self, text: str) -> list[Step]:
         """Parse new log text; return the steps completed by it."""
@@ -104,6 +105,20 @@ class LogWatcher:
         self.steps.extend(done)
         return done
 
+    def close_finished(self) -> list[Step]:
+        """Flush the last step if the solver finished it (its ``ExecutionTime`` line is in):
+        for a log whose solver was stopped mid-step, where :meth:`close` would take the state
+        of an unfinished PIMPLE iteration."""
+        done: list[Step] = []
+        if self._pending:
+            self._line(self._pending.strip(), done)
+            self._pending = ""
+        if self.current is not None and self._current_done:
+            done.append(self.current)
+        self.current = None
+        self.steps.extend(done)
+        return done
+
     def fatal_message(self) -> str:
         """The fatal error in one line: its first line and the cause printed after it."""
         return fatal_block(self.fatal_lines) or (self.fatal or "").strip()
@@ -115,6 +130,9 @@ class LogWatcher:
             if self.current is not None:
                 done.append(self.current)
             self.current = Step(float(m.group(1)), self._courant, self._delta_t)
+            self._current_done = False
+        elif line.startswith("ExecutionTime"):
+            self._current_done = self.current is not None
         elif m := _COURANT.match(line):
             self._courant = float(m.group(2))
         elif m := _DELTA_T.match(line):

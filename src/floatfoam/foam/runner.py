@@ -166,39 +166,46 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
     try:
         with open(log) as reader:
             reader.seek(offset)
-            while True:
-                finished = child.poll() is not None
-                if watcher.fatal and not finished:  # let it finish writing its message
-                    _wait(child, 10.0)
-                    finished = True
-                new_steps = watcher.feed(reader.read())
-                if finished:
-                    new_steps += watcher.close()
-                if new_steps:
-                    t0 = new_steps[0].time if t0 is None else t0
-                    if writer:
-                        writer.append(new_steps)
-                    problem = diverged(new_steps, limits)
-                    if problem:
-                        raise RunError(f"{label}: diverged at t = {new_steps[-1].time:g} s "
-                                       f"({problem}); see {log}")
-                    problem = stall.check(new_steps)
-                    if problem:
-                        raise RunError(f"{label}: stopped: {problem}; see {log}")
-                if watcher.fatal and finished:
-                    raise RunError(f"{label}: {name} stopped: {watcher.fatal_message()}; "
-                                   f"see {log}")
-                now = time.monotonic()
-                if watcher.steps and (now - last_report >= progress_every or finished):
-                    last_report = now
-                    print(progress_line(label, watcher.steps[-1], t0, end_time, now - start),
-                          file=sys.stderr, flush=True)
-                if finished:
-                    break
-                time.sleep(0.5)
-    except SignalInterruptError as err:
-        err.time = watcher.steps[-1].time if watcher.steps else None
-        raise
+            try:
+                while True:
+                    finished = child.poll() is not None
+                    if watcher.fatal and not finished:  # let it finish writing its message
+                        _wait(child, 10.0)
+                        finished = True
+                    new_steps = watcher.feed(reader.read())
+                    if finished:
+                        new_steps += watcher.close()
+                    if new_steps:
+                        t0 = new_steps[0].time if t0 is None else t0
+                        if writer:
+                            writer.append(new_steps)
+                        problem = diverged(new_steps, limits)
+                        if problem:
+                            raise RunError(f"{label}: diverged at t = {new_steps[-1].time:g} s "
+                                           f"({problem}); see {log}")
+                        problem = stall.check(new_steps)
+                        if problem:
+                            raise RunError(f"{label}: stopped: {problem}; see {log}")
+                    if watcher.fatal and finished:
+                        raise RunError(f"{label}: {name} stopped: {watcher.fatal_message()}; "
+                                       f"see {log}")
+                    now = time.monotonic()
+                    if watcher.steps and (now - last_report >= progress_every or finished):
+                        last_report = now
+                        print(progress_line(label, watcher.steps[-1], t0, end_time, now - start),
+                              file=sys.stderr, flush=True)
+                    if finished:
+                        break
+                    time.sleep(0.5)
+            except SignalInterruptError as err:
+                # the solver may have written more steps (and a time folder) since the last
+                # read: stop it, then record what its log holds, so a resume misses no step
+                child.close()
+                rest = watcher.feed(reader.read()) + watcher.close_finished()
+                if writer and rest:
+                    writer.append(rest)
+                err.time = watcher.steps[-1].time if watcher.steps else None
+                raise
     finally:
         child.close()
     if child.proc.returncode != 0:

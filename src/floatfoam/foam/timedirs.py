@@ -5,7 +5,8 @@ short); OpenFOAM would restart from it and fail, every time. A time folder is co
 
 * it holds the initial fields (the files of ``0.orig``), ``uniform/time`` and, for a moving body,
   ``uniform/sixDoFRigidBodyMotionState`` and ``polyMesh/points``;
-* it holds every file the time folder written before it holds;
+* it holds every file the time folder written before it holds, but for the files a restarted
+  solver writes only into the time it restarts from (:data:`RESTART_ONLY`);
 * every file ends with OpenFOAM's closing divider line (written last, in ASCII and binary).
 
 An incomplete folder is moved into ``<run>/.floatfoam/incomplete/`` (never deleted), in every
@@ -21,6 +22,9 @@ from floatfoam.layout import MARKERS
 
 FOOTER = b"// ************************************************************************* //"
 MOTION_FILES = ("uniform/sixDoFRigidBodyMotionState", "polyMesh/points")
+# interFoam's mesh motion writes its scale field at start-up only, into the time it starts from:
+# after a restart the folder restarted from holds it and the next one written does not.
+RESTART_ONLY = frozenset({"motionScale"})
 
 
 def time_folders(root: Path) -> list[tuple[float, Path]]:
@@ -51,7 +55,8 @@ def _ends_with_footer(path: Path) -> bool:
 def is_complete(folder: Path, required: set[str], previous: Path | None) -> bool:
     """Whether ``folder`` is a complete write (see the module docstring)."""
     files = _files(folder)
-    need = set(required) | (_files(previous) if previous is not None else set())
+    earlier = _files(previous) - RESTART_ONLY if previous is not None else set()
+    need = set(required) | earlier
     return need <= files and all(_ends_with_footer(folder / f) for f in files)
 
 
