@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from floatfoam.analysis.report import Sources, build_report
+from floatfoam.case import load_case
 from floatfoam.cli import report as report_command
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
@@ -151,12 +152,14 @@ def test_report_with_real_theory(tmp_path):
     cases, build = tmp_path / "cases", tmp_path / "build"
     (cases / "cyl").mkdir(parents=True)
     (cases / "cyl" / "case.toml").write_text(CASE_TOML)
+    name = load_case(str(cases / "cyl")).name  # outside cases/: cyl-<8 hex digits of its path>
+    assert name.startswith("cyl-") and len(name) == 12
     t = np.arange(0.0, 3.0, 2e-3)
-    write_motion(build / "cyl" / "medium" / "motion.csv", t, z=synthetic_decay(t))
-    mark_done(build / "cyl" / "medium", "finished")
+    write_motion(build / name / "medium" / "motion.csv", t, z=synthetic_decay(t))
+    mark_done(build / name / "medium", "finished")
     md = build_report(cases_dir=cases, build_dir=build,
                       sources=Sources.default(include_potential=False)
                       ).with_suffix(".md").read_text()
-    assert "## cyl: Half-immersed cylinder" in md
+    assert f"## {name}: Half-immersed cylinder" in md
     assert "| draft T | 0.0762 |" in md  # half immersed: the draft is the radius
     assert "| heave | linear theory (exact) |" in md and "| heave | CFD medium | 0.63 |" in md

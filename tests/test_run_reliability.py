@@ -190,6 +190,12 @@ def test_sigkilled_driver_takes_its_solver(tmp_path, ranks):
     assert not any(Path(f"/proc/{pid}").exists() and
                    "Z" not in Path(f"/proc/{pid}/stat").read_text().split(")")[-1][:3]
                    for pid in solver)
+    left = list(tmp_path.glob("floatfoam-mesh-*"))
+    assert left  # a SIGKILLed driver cannot remove its scratch folder ...
+    time.sleep(2.0)  # (scratch.LOCKING: a lock file younger than this is spared)
+    subprocess.run([FLOATFOAM, "theory", CASE], env=environment(tmp_path), check=True,
+                   capture_output=True, timeout=120)
+    assert not any(p.exists() for p in left)  # ... the next command removes it
 
 
 def test_run_ends_exactly_at_end_time(tmp_path):

@@ -12,7 +12,10 @@ from __future__ import annotations
 
 import copy
 import difflib
+import hashlib
 import math
+import os
+import sys
 import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -92,16 +95,45 @@ class Case:
 
 
 def case_dir(name_or_path: str) -> Path:
-    """A case folder: a path, or a folder name under cases/."""
-    candidate = Path(name_or_path)
-    for folder in (candidate, CASES_DIR / name_or_path):
-        if (folder / "case.toml").is_file():
-            return folder.resolve()
-    if candidate.name == "case.toml" and candidate.is_file():
-        return candidate.parent.resolve()
+    """A case folder, absolute (symbolic links kept: a linked case is named after its link).
+
+    A path (it holds a ``/`` or starts with ``.``: ``./sphere``, ``../x``, ``/data/body``)
+    names that folder, or the folder of a ``case.toml`` it names. A bare name is a built-in
+    case under cases/, or else a folder of that name here. Where a bare name is both, the
+    built-in case is taken, and a note says how to name the folder instead; where a path names
+    a folder that is also a built-in case's name, a note says the folder is taken."""
+    text = str(name_or_path)
+    given = Path(text)
+    explicit = "/" in text or text.startswith(".")
+    builtin = CASES_DIR / text
+    if not explicit and (builtin / "case.toml").is_file():
+        if (given / "case.toml").is_file() and given.resolve() != builtin.resolve():
+            print(f"note: {text!r} is the built-in case cases/{text}; ./{text} names the folder "
+                  "here", file=sys.stderr)
+        return builtin
+    if (given / "case.toml").is_file():
+        if explicit and (CASES_DIR / given.name / "case.toml").is_file() \
+                and given.resolve() != (CASES_DIR / given.name).resolve():
+            print(f"note: {text} is the folder {os.path.abspath(given)}, not the built-in case "
+                  f"{given.name}", file=sys.stderr)
+        return Path(os.path.abspath(given))
+    if given.name == "case.toml" and given.is_file():
+        return Path(os.path.abspath(given.parent))
     names = [folder.name for folder in list_cases()]
-    raise InputError(f"case {name_or_path!r} not found; valid are a folder with a case.toml "
+    raise InputError(f"case {text!r} not found; valid are a folder with a case.toml "
                      f"or one of: {', '.join(names)}")
+
+
+def build_name(folder: Path) -> str:
+    """The name of a case's folder under the build folder: a built-in case's own name; any
+    other case's name with 8 hex digits of its absolute path, so that two cases of one name
+    in two places (``a/cyl``, ``b/cyl``, or a folder named like a built-in case) never share a
+    build folder."""
+    folder = Path(os.path.abspath(folder))
+    if folder.parent == Path(os.path.abspath(CASES_DIR)):
+        return folder.name
+    digest = hashlib.sha256(str(folder).encode()).hexdigest()[:8]
+    return f"{folder.name}-{digest}"
 
 
 def load_case(name_or_path: str, overrides=()) -> Case:
@@ -352,7 +384,7 @@ def _build(folder: Path, cfg: dict) -> Case:
         raise InputError(f"domain.depth = {tank_depth!r} differs from fluid.depth = {depth!r}: "
                          "valid is to leave it out (the tank is the fluid's depth) or set it "
                          "equal")
-    return Case(name=folder.name, path=folder, raw=cfg, body=body, mass=mass, cog=cog,
+    return Case(name=build_name(folder), path=folder, raw=cfg, body=body, mass=mass, cog=cog,
                 gyradius=gyradius, depth=float(depth), release=release, **fluid, **air,
                 settings=stages, reference=reference, **text)
 

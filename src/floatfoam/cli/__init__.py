@@ -8,10 +8,12 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import errno
 import importlib
 import os
 import sys
 
+from floatfoam import scratch
 from floatfoam.errors import ComputationError, InputError
 from floatfoam.interrupts import SignalInterruptError, signals_interrupt
 
@@ -19,8 +21,39 @@ COMMANDS = ["theory", "gz", "mesh", "run", "batch", "analyse", "report", "potent
             "decay_model", "validate", "pictures"]
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """argparse's parser whose errors are one line (argparse prints the usage first), exit 2;
+    its subcommands' parsers are of this class too."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message}; see `{self.prog} --help`\n")
+
+
+# errors of a path the user gave or chose (the build folder, --out, --plot): bad input, exit 2
+PATH_ERRNOS = {errno.EEXIST, errno.ENAMETOOLONG, errno.EROFS, errno.ENOTDIR, errno.EISDIR,
+               errno.EACCES, errno.EPERM, errno.ENOENT, errno.ENOTEMPTY}
+FULL_ERRNOS = {errno.ENOSPC, errno.EDQUOT}
+
+
+def os_error_line(err: OSError) -> tuple[str, int]:
+    """The one line and exit code of an OSError: a path that cannot be used is bad input (2)
+    — but a program not found (ENOENT of a bare name) is not —; a full disk says so (1)."""
+    name = err.filename
+    if err.errno in FULL_ERRNOS:
+        where = f" holding {name}" if name else ""
+        return (f"failed: no space left on the disk{where}: free some space, then run the same "
+                "command again (a run resumes where it stopped)", 1)
+    path_like = name is not None and (err.errno != errno.ENOENT or "/" in str(name))
+    if err.errno in PATH_ERRNOS and path_like:
+        return (f"error: cannot use {name}: {err.strerror}; valid is a path in an existing, "
+                "writable folder, at most 255 bytes a name, and a new file where one is written "
+                "(nothing is overwritten; FLOATFOAM_BUILD names another build folder)", 2)
+    where = f" ({name})" if name else ""
+    return f"failed: {err.strerror or err}{where}", 1
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="floatfoam",
         description="Oscillation and stability of floating bodies: theory, potential flow, CFD.",
     )
@@ -39,6 +72,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     prog = f"floatfoam {args.command}"
+    scratch.sweep()  # scratch folders of commands killed with SIGKILL
     try:
         with signals_interrupt():  # a signal stops the command: one line, 128 + signal
             return int(args.func(args) or 0)
@@ -56,19 +90,12 @@ def main(argv: list[str] | None = None) -> int:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 141
-    except (PermissionError, NotADirectoryError, IsADirectoryError) as err:
+    except OSError as err:  # a path that cannot be used, a full disk, a missing program
         if args.debug:
             raise
-        print(f"{prog}: error: cannot use {err.filename}: {err.strerror}; valid is a readable "
-              "case and a writable build folder (FLOATFOAM_BUILD names another)",
-              file=sys.stderr)
-        return 2
-    except OSError as err:  # a missing program, a full disk, an I/O error: not the input
-        if args.debug:
-            raise
-        where = f" ({err.filename})" if err.filename else ""
-        print(f"{prog}: failed: {err.strerror or err}{where}", file=sys.stderr)
-        return 1
+        line, code = os_error_line(err)
+        print(f"{prog}: {line}", file=sys.stderr)
+        return code
     except ComputationError as err:  # a solver failed (floatfoam mesh, potential ...): one line
         if args.debug:
             raise

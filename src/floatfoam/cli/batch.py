@@ -52,6 +52,9 @@ def run(args) -> int:
     if args.hostfile is not None and not Path(args.hostfile).is_file():
         raise InputError(f"--hostfile {args.hostfile}: no such file")
     out = Path(args.out)
+    if not out.parent.is_dir():
+        raise InputError(f"--out {out}: no folder {out.parent}; valid is a new file in an "
+                         "existing folder")
     if out.exists():
         raise InputError(f"--out {out}: the file exists; valid is a new file (nothing is "
                          "overwritten)")
@@ -60,12 +63,31 @@ def run(args) -> int:
     cases = [load_case(name, args.overrides) for name in args.cases]  # each checked now
     for case in cases:
         end_time_of(case)  # run.end_time, or the theory's periods to set it from
+    check_run_folders(cases, args.levels, args.np)
     tasks = [(str(case.path), level) for case in cases for level in args.levels]
     out.write_text(script(tasks, args))
     out.chmod(0o755)
     print(f"{out}: {len(tasks)} tasks ({len(cases)} cases × {len(args.levels)} levels, "
           f"{args.np} rank(s) each); submit with `sbatch {out}`")
     return 0
+
+
+def check_run_folders(cases, levels: list[str], np_: int) -> None:
+    """Refuse tasks that would share a run folder (a case or level given twice) and run
+    folders that already hold a run of other settings (or --np), which a task would refuse
+    after the job started: one line each, before the script is written."""
+    from floatfoam.foam.driver import existing_run
+
+    seen: dict[Path, str] = {}
+    for case in cases:
+        for level in levels:
+            run_dir = layout.run_dir(case.name, level)
+            task = f"{case.path} at {level}"
+            if run_dir in seen:
+                raise InputError(f"{task}: the same run folder as {seen[run_dir]} ({run_dir}); "
+                                 "valid is each case and level once")
+            seen[run_dir] = task
+            existing_run(case, level, np_)  # InputError when it holds other settings
 
 
 def script(tasks: list[tuple[str, str]], args) -> str:

@@ -17,6 +17,7 @@ from pathlib import Path
 from floatfoam import layout
 from floatfoam.case import load_case
 from floatfoam.cli.common import add_case_arguments, dump_json
+from floatfoam.errors import InputError
 from floatfoam.layout import LEVELS
 from floatfoam.meshing.levels import POSES, mesh_spec, pose
 
@@ -90,9 +91,9 @@ def run_body(args) -> int:
     eq = equilibrium(case)
     where = pose(case, args.pose, eq)
     reports = []
-    for level in _levels(args.level):
-        folder = args.out or layout.case_build_dir(case.name) / "mesh" / level
-        stem = "body" if args.pose == "body" else f"body_{args.pose}"
+    stem = "body" if args.pose == "body" else f"body_{args.pose}"
+    folders = {level: _body_folder(args, case, level, stem) for level in _levels(args.level)}
+    for level, folder in folders.items():
         written = write_body(case, mesh_spec(case, level), where, folder, stem)
         report = discrete_volume_report(case, level, equilibrium=eq)
         report["written"] = {k: str(v) for k, v in written.items()}
@@ -105,16 +106,46 @@ def run_body(args) -> int:
     return 0
 
 
+def _body_folder(args, case, level: str, stem: str) -> Path:
+    """Where the body of ``level`` goes: --out (a folder per level under it with --level all),
+    else the build folder. A file that --out would overwrite is refused."""
+    if args.out is None:
+        return layout.case_build_dir(case.name) / "mesh" / level
+    folder = args.out / level if args.level == "all" else args.out
+    if folder.exists() and not folder.is_dir():
+        raise InputError(f"--out {args.out}: {folder} is a file; valid is a folder")
+    taken = [p for p in (folder / f"{stem}.stl", folder / f"{stem}_section.csv") if p.exists()]
+    if taken:
+        raise InputError(f"--out {args.out}: {taken[0]} exists; valid is a folder without "
+                         "it (nothing is overwritten)")
+    return folder
+
+
+def _domain_file(args, level: str) -> Path | None:
+    """The .msh of ``level``: --out (with the level in its name with --level all), else None
+    (the build folder's). A file that exists is refused."""
+    out = args.out
+    if out is None:
+        return None
+    if args.level == "all":
+        out = out.with_name(f"{out.stem}_{level}{out.suffix}")
+    if out.exists():
+        raise InputError(f"--out {args.out}: {out} exists; valid is a new file (nothing is "
+                         "overwritten)")
+    if not out.parent.is_dir():
+        raise InputError(f"--out {args.out}: no folder {out.parent}; valid is a file in an "
+                         "existing folder")
+    return out
+
+
 def run_domain(args) -> int:
     from floatfoam.foam.meshcheck import convert_and_check
     from floatfoam.meshing.domains import build_domain, format_domain
 
     case = load_case(args.case, args.overrides)
     results = []
-    for level in _levels(args.level):
-        out = args.out
-        if out is not None and args.level == "all":
-            out = out.with_name(f"{out.stem}_{level}{out.suffix}")
+    outs = {level: _domain_file(args, level) for level in _levels(args.level)}
+    for level, out in outs.items():
         result = build_domain(case, level, args.kind, args.pose, out)
         if args.check:
             msh = Path(result["path"])

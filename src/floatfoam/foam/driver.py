@@ -23,7 +23,6 @@ import math
 import os
 import shutil
 import sys
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -36,6 +35,7 @@ from floatfoam.foam.render import end_time_of, release_state, render
 from floatfoam.foam.runlock import RunLock, lock_path
 from floatfoam.foam.timedirs import latest_time, set_aside_incomplete
 from floatfoam.hydrostatics.theory import Equilibrium
+from floatfoam.scratch import scratch_dir
 
 
 @dataclass
@@ -208,11 +208,12 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     target = layout.run_dir(case.name, level, build_dir, time_step_divisor=time_step_divisor,
                             morphing=morphing)
     runner.check_path(target)
+    runner.check_disk(target)
     warning = domain.clamped_bottom(mesh, case, made_at, case.settings.run.mesh_pose)
     if warning:
         print(f"[{label}] warning: {warning}", file=sys.stderr)
     pose_name = case.settings.run.mesh_pose
-    with tempfile.TemporaryDirectory(prefix="floatfoam-mesh-") as scratch:
+    with scratch_dir("mesh") as scratch:
         if mesh.mesher == "gmsh" and (force or not layout.step_done(target, "render")):
             print(f"[{label}] gmsh: meshing the {mesh.kind} domain (the body at "
                   f"{pose_name})", file=sys.stderr)

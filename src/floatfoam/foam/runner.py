@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import shutil
 import sys
 import time
 from dataclasses import dataclass
@@ -79,6 +80,37 @@ class Stall:
         return None
 
 
+LOW_DISK = 64 * 2**20  # bytes: less free than a coarse 2D run writes in a few time folders
+
+
+def free_bytes(folder: Path) -> int:
+    """Free bytes on the disk holding ``folder`` (or its nearest existing parent)."""
+    folder = Path(folder)
+    while not folder.exists() and folder != folder.parent:
+        folder = folder.parent
+    return shutil.disk_usage(folder).free
+
+
+def disk_note(run_dir: Path) -> str:
+    """A clause for a failure's message when the run's disk is (nearly) full, else "": an
+    OpenFOAM application that cannot write dies with a signal or an I/O error that does not
+    say so."""
+    free = free_bytes(run_dir)
+    if free >= LOW_DISK:
+        return ""
+    return (f"; the disk holding {run_dir} is full ({free / 2**20:.1f} MiB free): free some "
+            "space, then run the same command to resume")
+
+
+def check_disk(folder: Path) -> None:
+    """Refuse to start a run on a (nearly) full disk, before anything is written."""
+    free = free_bytes(folder)
+    if free < LOW_DISK:
+        raise InputError(f"build folder {folder}: its disk has {free / 2**20:.1f} MiB free: "
+                         f"valid is at least {LOW_DISK // 2**20} MiB (free some space, or "
+                         "FLOATFOAM_BUILD names a folder on another disk)")
+
+
 def foam_env() -> dict:
     env = dict(os.environ)
     env.update(FOAM_ENV)
@@ -86,16 +118,32 @@ def foam_env() -> dict:
 
 
 UNSAFE = re.compile(r"[\s'\"]")
+# OpenFOAM reads no string over 1024 characters ("is too long (max. 1024 characters)", v1912's
+# blockMesh); a run folder's deepest file adds ~60 (processor12/0.123456789/uniform/
+# sixDoFRigidBodyMotionState), so the folder itself keeps 100 free.
+MAX_RUN_PATH = 1024 - 100
+NAME_MAX = 255  # bytes in one file name (Linux)
 
 
 def check_path(run_dir: Path) -> None:
-    """OpenFOAM takes no white space or quote in a case path (its file names drop them):
-    refuse such a case directory before anything is written."""
+    """OpenFOAM takes no white space or quote in a case path (its file names drop them) and no
+    path over 1024 characters; no file system takes a name over 255 bytes: refuse such a case
+    directory before anything is written."""
     bad = UNSAFE.search(str(run_dir))
     if bad:
         raise InputError(f"case directory {str(run_dir)!r} holds {bad.group()!r}, which OpenFOAM "
                          "cannot take in a case path: valid is a case name and build folder "
                          "(FLOATFOAM_BUILD) without spaces or quotes")
+    long_part = next((part for part in Path(run_dir).parts
+                      if len(part.encode()) > NAME_MAX), None)
+    if long_part is not None:
+        raise InputError(f"case directory {str(run_dir)[:60]!r}…: its part {long_part[:20]!r}… "
+                         f"is {len(long_part.encode())} bytes long: valid is at most {NAME_MAX} "
+                         "bytes per folder name (FLOATFOAM_BUILD names another build folder)")
+    if len(str(run_dir)) > MAX_RUN_PATH:
+        raise InputError(f"case directory {str(run_dir)[:60]!r}… is {len(str(run_dir))} "
+                         f"characters long: valid is at most {MAX_RUN_PATH}, for OpenFOAM reads "
+                         "no path over 1024 (FLOATFOAM_BUILD names a shorter build folder)")
 
 
 def run_app(run_dir: Path, name: str, argv: list[str], *, np_: int = 1,
@@ -120,7 +168,7 @@ def run_app(run_dir: Path, name: str, argv: list[str], *, np_: int = 1,
     if check and code != 0:
         cause = fatal_block(log.read_text(errors="replace").splitlines())
         raise RunError(f"{argv[0]} failed (exit code {code})"
-                       + (f": {cause}" if cause else "") + f"; see {log}")
+                       + (f": {cause}" if cause else "") + f"; see {log}" + disk_note(run_dir))
     if marker:
         mark_done(run_dir, name)
     return log
@@ -188,7 +236,7 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                             raise RunError(f"{label}: stopped: {problem}; see {log}")
                     if watcher.fatal and finished:
                         raise RunError(f"{label}: {name} stopped: {watcher.fatal_message()}; "
-                                       f"see {log}")
+                                       f"see {log}{disk_note(run_dir)}")
                     now = time.monotonic()
                     if watcher.steps and (now - last_report >= progress_every or finished):
                         last_report = now
@@ -210,7 +258,7 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
         child.close()
     if child.proc.returncode != 0:
         raise RunError(f"{label}: {name} failed (exit code {child.proc.returncode}); "
-                       f"see {log}")
+                       f"see {log}{disk_note(run_dir)}")
     reached = watcher.steps[-1].time if watcher.steps else None
     if reached is None or reached < end_time * (1 - 1e-9) - 1e-12:
         raise RunError(f"{label}: {name} ended at t = {reached} s, short of end_time = "
