@@ -81,9 +81,12 @@ def test_two_cases_of_one_name_never_share_a_build_folder(tmp_path):
 
 
 def test_a_linked_case_is_named_after_its_link(tmp_path):
-    (tmp_path / "mybody").symlink_to(CASES_DIR / "cylinder_heave")
-    case = load_case(str(tmp_path / "mybody"))
-    assert case.name.startswith("mybody-")
+    """A link to a user's case takes the link's name; a link to a built-in case is that case."""
+    shutil.copytree(CASES_DIR / "cylinder_heave", tmp_path / "v3")
+    (tmp_path / "mybody").symlink_to(tmp_path / "v3")
+    assert load_case(str(tmp_path / "mybody")).name.startswith("mybody-")
+    (tmp_path / "cyl").symlink_to(CASES_DIR / "cylinder_heave")
+    assert load_case(str(tmp_path / "cyl")).name == "cylinder_heave"
 
 
 @pytest.mark.parametrize("argv", [["cylinder_heave", "cylinder_heave"],

@@ -125,13 +125,14 @@ def case_dir(name_or_path: str) -> Path:
 
 
 def build_name(folder: Path) -> str:
-    """The name of a case's folder under the build folder: a built-in case's own name; any
-    other case's name with 8 hex digits of its absolute path, so that two cases of one name
-    in two places (``a/cyl``, ``b/cyl``, or a folder named like a built-in case) never share a
-    build folder."""
+    """The name of a case's folder under the build folder: a built-in case's own name (reached
+    by its folder or a link to it); any other case's name — its folder's, or its link's —
+    with 8 hex digits of its absolute path, so that two cases of one name in two places
+    (``a/cyl``, ``b/cyl``, or a folder named like a built-in case) never share a build
+    folder."""
     folder = Path(os.path.abspath(folder))
-    if folder.parent == Path(os.path.abspath(CASES_DIR)):
-        return folder.name
+    if folder.resolve().parent == CASES_DIR.resolve():
+        return folder.resolve().name
     digest = hashlib.sha256(str(folder).encode()).hexdigest()[:8]
     return f"{folder.name}-{digest}"
 
@@ -164,11 +165,19 @@ def _read_toml(folder: Path, seen: list[Path]) -> dict:
         chain = " → ".join(p.name for p in [*seen, folder])
         raise InputError(f"case.extends: the cases extend one another in a loop ({chain}); "
                          "valid is a chain ending in a case without extends")
-    with open(folder / "case.toml", "rb") as fh:
-        try:
-            raw = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as err:
-            raise InputError(f"{folder / 'case.toml'}: not valid TOML ({err})") from None
+    path = folder / "case.toml"
+    data = path.read_bytes()
+    try:
+        raw = tomllib.loads(data.decode("utf-8"))
+    except UnicodeDecodeError as err:  # random bytes, UTF-16, Latin-1 …
+        raise InputError(f"{path}: not valid TOML (not UTF-8 text: byte "
+                         f"0x{data[err.start]:02x} at offset {err.start}); valid is a TOML "
+                         "file saved as UTF-8") from None
+    except tomllib.TOMLDecodeError as err:
+        raise InputError(f"{path}: not valid TOML ({err})") from None
+    except RecursionError:  # tomllib recurses once per nested array or inline table
+        raise InputError(f"{path}: not valid TOML (arrays or tables nested too deep); valid "
+                         "is a case file of tables of keys") from None
     base_name = raw.get("case", {}).get("extends")
     _check_tables(raw, complete=base_name is None)
     if base_name is None:
@@ -243,10 +252,27 @@ def _check_tables(raw: dict, complete: bool = True) -> None:
                              "gyradius)")
 
 
+# Every number of a case lies within these magnitudes (SI units: a body from a micrometre to
+# a thousand kilometres, ν from 1e-12 m²/s): products of a few of them (a volume, an inertia)
+# stay far from float64's overflow and underflow, which a radius of 1e300 reaches.
+SMALLEST, LARGEST = 1e-12, 1e9
+
+
 def _number(cfg: dict, table: str, key: str, *, positive: bool = True) -> float:
     if key not in cfg[table]:
         raise InputError(f"{table}.{key} is missing; it is required here")
-    return number(cfg[table][key], f"{table}.{key}", minimum=0.0 if positive else None)
+    value = number(cfg[table][key], f"{table}.{key}", minimum=0.0 if positive else None)
+    return _in_range(value, f"{table}.{key}", positive)
+
+
+def _in_range(value: float, name: str, positive: bool) -> float:
+    """``value`` if its magnitude is within [SMALLEST, LARGEST] (0 allowed when signed)."""
+    size = abs(value)
+    if size > LARGEST or (size < SMALLEST and (positive or size > 0.0)):
+        window = (f"between {SMALLEST:g} and {LARGEST:g}" if positive else
+                  f"0 or of magnitude between {SMALLEST:g} and {LARGEST:g}")
+        raise InputError(f"{name} = {value!r}: valid is a number {window} (SI units)")
+    return value
 
 
 def _vector(cfg: dict, table: str, key: str, *, positive: bool = False) -> np.ndarray:
@@ -255,6 +281,8 @@ def _vector(cfg: dict, table: str, key: str, *, positive: bool = False) -> np.nd
     if not ok or (positive and min(value) <= 0):
         kind = "three numbers > 0" if positive else "three numbers"
         raise InputError(f"{table}.{key} = {value!r}: valid is [x, y, z], {kind}")
+    for v in value:
+        _in_range(float(v), f"{table}.{key}", positive)
     return np.array(value, dtype=float)
 
 

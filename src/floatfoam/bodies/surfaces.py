@@ -1,4 +1,9 @@
-"""Closed bodies from an implicit surface F(x, y, z) = 0 or from an STL file."""
+"""Closed bodies from an implicit surface F(x, y, z) = 0 or from an STL file.
+
+An expression is never handed to Python's ``eval``: :func:`compile_expression` walks its syntax
+tree and turns each node into a NumPy operation on float64 arrays, so every number, even
+``9**9**9``, is a float64 (that one is inf) and every operation is bounded in time.
+"""
 
 from __future__ import annotations
 
@@ -8,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam.bodies.geometry import mesh_volume, open_edges
+from floatfoam.bodies.geometry import mesh_volume, open_edges, self_intersection
 from floatfoam.bodies.shapes import MeshBody
 from floatfoam.errors import InputError
 
@@ -17,29 +22,136 @@ _FUNCTIONS = {
     for name in ("sin", "cos", "tan", "exp", "log", "sqrt", "abs", "arctan2", "minimum",
                  "maximum", "sinh", "cosh", "tanh", "arcsin", "arccos", "arctan")
 }
-_CONSTANTS = {"pi": np.pi, "e": np.e}
-_ALLOWED_NODES = (ast.Expression, ast.BinOp, ast.UnaryOp, ast.Call, ast.Name, ast.Load,
-                  ast.Constant, ast.operator, ast.unaryop)
+_TWO_ARGUMENTS = {"arctan2", "minimum", "maximum"}
+_CONSTANTS = {"pi": np.float64(np.pi), "e": np.float64(np.e)}
+_VARIABLES = ("x", "y", "z")
+_UNARY = {ast.UAdd: np.positive, ast.USub: np.negative}
+_BINARY = {ast.Add: np.add, ast.Sub: np.subtract, ast.Mult: np.multiply,
+           ast.Div: np.true_divide, ast.Pow: np.power}
+MAX_EXPRESSION_LENGTH = 2000  # characters: ten times the longest surface written by hand
+MAX_EXPRESSION_DEPTH = 100  # operations nested in one another
+VALID_EXPRESSION = ("numbers, x, y, z, pi, e, + - * / ** and the functions "
+                    + ", ".join(sorted(_FUNCTIONS)))
 
 
 def compile_expression(text: str, key: str = "body.expression"):
-    """Compile ``text`` (an expression in x, y, z, numbers, + − * / ** and numpy functions
-    such as sqrt, abs, sin) into a vectorised function F(x, y, z)."""
+    """A vectorised function F(x, y, z) from ``text``, an expression in x, y, z.
+
+    Valid are numbers, the names x, y, z, pi and e, unary + and −, the operators + − * / **
+    and calls of the NumPy functions in ``_FUNCTIONS`` (arctan2, minimum and maximum take two
+    arguments, the others one). Every number is a float64 and F is evaluated in float64 with
+    NumPy's warnings off: an overflow, ``1/0`` or ``sqrt(-1)`` gives inf or NaN (which
+    :func:`implicit_body` refuses), never an exception, and no operation takes longer than
+    one array pass (``9**9**9`` is inf at once). ``text`` is at most
+    ``MAX_EXPRESSION_LENGTH`` characters, nested at most ``MAX_EXPRESSION_DEPTH`` deep.
+
+    Raises
+    ------
+    InputError
+        One line naming ``key``, the expression and what is valid.
+    """
+    tree = _parse(text, key)
+    evaluate = _node(tree.body, _source(text), key)
+
+    def surface(x, y, z):
+        x, y, z = (np.asarray(v, dtype=float) for v in (x, y, z))
+        with np.errstate(all="ignore"):
+            value = evaluate({"x": x, "y": y, "z": z})
+        shape = np.broadcast_shapes(x.shape, y.shape, z.shape)
+        return value if np.shape(value) == shape else np.broadcast_to(value, shape).copy()
+
+    return surface
+
+
+def _parse(text: str, key: str) -> ast.Expression:
+    """The syntax tree of ``text``, within the length and depth bounds."""
+    if len(text) > MAX_EXPRESSION_LENGTH:
+        raise InputError(f"{key} = {text[:40]!r}… is {len(text)} characters long: valid is "
+                         f"an expression of at most {MAX_EXPRESSION_LENGTH} characters")
     try:
-        tree = ast.parse(text, mode="eval")
-    except SyntaxError as err:
-        raise InputError(f"{key} = {text!r} is not a valid expression ({err.msg})") from None
-    allowed = {"x", "y", "z", *_FUNCTIONS, *_CONSTANTS}
-    for node in ast.walk(tree):
-        if not isinstance(node, _ALLOWED_NODES):
-            raise InputError(f"{key} = {text!r}: only arithmetic in x, y, z and functions "
-                             f"{', '.join(sorted(_FUNCTIONS))} are valid")
-        if isinstance(node, ast.Name) and node.id not in allowed:
-            raise InputError(f"{key} = {text!r}: unknown name {node.id!r}; valid names are "
-                             "x, y, z, pi, e and " + ", ".join(sorted(_FUNCTIONS)))
-    code = compile(tree, "<expression>", "eval")
-    namespace = {"__builtins__": {}, **_FUNCTIONS, **_CONSTANTS}
-    return lambda x, y, z: eval(code, namespace, {"x": x, "y": y, "z": z})  # noqa: S307
+        tree = ast.parse(_source(text), mode="eval")
+    except (SyntaxError, ValueError, RecursionError, MemoryError) as err:
+        reason = getattr(err, "msg", None) or str(err) or type(err).__name__
+        raise InputError(f"{key} = {text!r} is not a valid expression ({reason}): valid "
+                         f"are {VALID_EXPRESSION}") from None
+    if _depth(tree.body) > MAX_EXPRESSION_DEPTH:
+        raise InputError(f"{key} = {text[:40]!r}… nests operations more than "
+                         f"{MAX_EXPRESSION_DEPTH} deep: valid is at most "
+                         f"{MAX_EXPRESSION_DEPTH} (each operator and call is a level: group "
+                         "the terms of a long sum in parentheses)")
+    return tree
+
+
+def _source(text: str) -> str:
+    """``text`` on one line (a TOML multi-line string may span several), stripped."""
+    return "".join(" " if c.isspace() else c for c in text).strip()
+
+
+def _depth(root: ast.AST) -> int:
+    """How deep expressions nest below ``root`` (iterative: any depth is safe to measure)."""
+    deepest, stack = 0, [(root, 1)]
+    while stack:
+        node, depth = stack.pop()
+        deepest = max(deepest, depth)
+        stack.extend((child, depth + 1) for child in ast.iter_child_nodes(node)
+                     if isinstance(child, ast.expr))
+    return deepest
+
+
+def _node(node: ast.AST, source: str, key: str):
+    """The evaluator of one node: a function of the variables {"x": …, "y": …, "z": …}."""
+    if isinstance(node, ast.Constant) and type(node.value) in (int, float):
+        value = _float64(node.value)
+        return lambda env: value
+    if isinstance(node, ast.Name) and node.id in _VARIABLES:
+        return lambda env: env[node.id]
+    if isinstance(node, ast.Name) and node.id in _CONSTANTS:
+        value = _CONSTANTS[node.id]
+        return lambda env: value
+    if isinstance(node, ast.UnaryOp) and type(node.op) in _UNARY:
+        op, operand = _UNARY[type(node.op)], _node(node.operand, source, key)
+        return lambda env: op(operand(env))
+    if isinstance(node, ast.BinOp) and type(node.op) in _BINARY:
+        op = _BINARY[type(node.op)]
+        left, right = _node(node.left, source, key), _node(node.right, source, key)
+        return lambda env: op(left(env), right(env))
+    if isinstance(node, ast.Call):
+        return _call(node, source, key)
+    if isinstance(node, ast.Name):
+        raise InputError(f"{key} = {source!r}: unknown name {node.id!r}; valid names are x, y, "
+                         f"z, pi, e and the functions {', '.join(sorted(_FUNCTIONS))}")
+    raise InputError(f"{key} = {source!r}: {_piece(node, source)!r} is not valid here; valid "
+                     f"are {VALID_EXPRESSION}")
+
+
+def _call(node: ast.Call, source: str, key: str):
+    """The evaluator of a call of one of ``_FUNCTIONS`` with its number of arguments."""
+    name = node.func.id if isinstance(node.func, ast.Name) else None
+    if name not in _FUNCTIONS:
+        raise InputError(f"{key} = {source!r}: {_piece(node.func, source)!r} is not a function; "
+                         f"valid functions are {', '.join(sorted(_FUNCTIONS))}")
+    arity = 2 if name in _TWO_ARGUMENTS else 1
+    form = f"{name}(u, v)" if arity == 2 else f"{name}(u)"
+    if len(node.args) != arity or node.keywords:
+        given = ("keyword arguments" if node.keywords else
+                 f"{len(node.args)} argument{'s' * (len(node.args) != 1)}")
+        raise InputError(f"{key} = {source!r}: {_piece(node, source)!r} calls {name} with "
+                         f"{given}; valid is {form}")
+    func, args = _FUNCTIONS[name], [_node(arg, source, key) for arg in node.args]
+    return lambda env: func(*(arg(env) for arg in args))
+
+
+def _float64(value: int | float) -> np.float64:
+    """A literal as a float64: an integer beyond float64's range is inf, as ``1e999`` is."""
+    try:
+        return np.float64(float(value))
+    except OverflowError:
+        return np.float64(np.inf)
+
+
+def _piece(node: ast.AST, source: str) -> str:
+    """The text of ``node`` in ``source`` (for messages), else its kind."""
+    return ast.get_source_segment(source, node) or type(node).__name__
 
 
 def implicit_body(expression: str, bounds, resolution: int = 96) -> MeshBody:
@@ -57,7 +169,7 @@ def implicit_body(expression: str, bounds, resolution: int = 96) -> MeshBody:
     func = compile_expression(expression)
     axes = [np.linspace(lo[i], hi[i], resolution) for i in range(3)]
     x, y, z = np.meshgrid(*axes, indexing="ij")
-    values = np.broadcast_to(np.asarray(func(x, y, z), dtype=float), x.shape)
+    values = func(x, y, z)
     if not np.all(np.isfinite(values)):
         raise InputError(f"body.expression = {expression!r} is not finite everywhere in "
                          "body.bounds")
@@ -77,42 +189,119 @@ def implicit_body(expression: str, bounds, resolution: int = 96) -> MeshBody:
 
 
 def stl_body(path: Path, scale: float = 1.0) -> MeshBody:
-    """Read a closed triangle mesh from a binary or ASCII STL file (units: m × ``scale``)."""
+    """Read a closed triangle mesh from a binary or ASCII STL file (units: m × ``scale``).
+
+    The file must hold finite coordinates and a watertight, consistently oriented surface
+    that does not cross itself (no two triangles coincide or meet unless they share a vertex
+    or an edge); anything else is an InputError naming the file.
+    """
+    name = f"body.path = {str(path)!r}"
     if not path.is_file():
-        raise InputError(f"body.path = {str(path)!r} does not exist; valid is an STL file")
-    data = path.read_bytes()
-    triangles = _read_binary_stl(data)
-    if triangles is None:
-        triangles = _read_ascii_stl(data.decode("ascii", errors="replace"), path)
-    verts, faces = _weld(triangles * scale)
+        raise InputError(f"{name} does not exist; valid is an STL file")
+    triangles = _read_stl(path.read_bytes(), name)
+    _check_finite(triangles, name)
+    with np.errstate(over="ignore", invalid="ignore"):
+        verts, faces = _weld(triangles * scale)
+    if not np.all(np.isfinite(verts)):
+        raise InputError(f"body.scale = {scale!r} takes the coordinates of {name} beyond "
+                         "float range: valid is a smaller scale")
+    _check_coincident(verts, faces, name)
     if open_edges(faces):
-        raise InputError(f"body.path = {str(path)!r} is not a closed surface: valid is a "
-                         "watertight, consistently oriented STL")
+        raise InputError(f"{name} is not a closed surface: valid is a watertight, "
+                         "consistently oriented STL")
+    _check_self_intersection(verts, faces, name)
     if mesh_volume(verts, faces) < 0:
         faces = faces[:, ::-1]
     return MeshBody(verts, faces)
 
 
-def _read_binary_stl(data: bytes):
+def _read_stl(data: bytes, name: str) -> np.ndarray:
+    """The (N, 3, 3) triangles of a binary STL, else of an ASCII one (starting "solid")."""
+    triangles = _read_binary_stl(data, name)
+    if triangles is not None:
+        return triangles
+    if data.lstrip()[:5].lower() == b"solid":
+        return _read_ascii_stl(data.decode("ascii", errors="replace"), name)
+    if len(data) < 84:
+        raise InputError(f"{name} is not an STL file ({len(data)} bytes): valid is a binary "
+                         "STL (84 bytes and more) or an ASCII one (starting 'solid')")
+    (count,) = struct.unpack_from("<I", data, 80)
+    raise InputError(f"{name} is not a complete binary STL: its header declares {count} "
+                     f"triangles (84 + 50 × {count} = {84 + 50 * count} bytes) and it has "
+                     f"{len(data)} bytes; valid is a whole binary STL or an ASCII one")
+
+
+def _read_binary_stl(data: bytes, name: str):
+    """Triangles of a binary STL (80-byte header, count, 50 bytes a triangle), None if the
+    size does not match its count, an InputError if it has no triangles."""
     if len(data) < 84:
         return None
     (count,) = struct.unpack_from("<I", data, 80)
     if len(data) != 84 + 50 * count:
         return None
+    if count == 0:
+        raise InputError(f"{name} is a binary STL of 0 triangles: valid is a closed surface "
+                         "(4 triangles or more)")
     records = np.frombuffer(data, dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)),
                                                   ("a", "<u2")]), count=count, offset=84)
     return records["v"].astype(float)
 
 
-def _read_ascii_stl(text: str, path: Path):
-    coords = [line.split()[1:4] for line in text.splitlines()
-              if line.strip().startswith("vertex")]
-    if not coords or len(coords) % 3:
-        raise InputError(f"body.path = {str(path)!r} is not a readable STL file")
-    return np.array(coords, dtype=float).reshape(-1, 3, 3)
+def _read_ascii_stl(text: str, name: str) -> np.ndarray:
+    """Triangles of an ASCII STL: every ``vertex x y z`` line, three a facet."""
+    vertices = [(number, line.split()) for number, line in enumerate(text.splitlines(), 1)
+                if line.lstrip()[:6].lower() == "vertex"]
+    if not vertices or len(vertices) % 3:
+        raise InputError(f"{name} is not a readable STL file ({len(vertices)} 'vertex' "
+                         "lines): valid is an ASCII STL of facets of three vertices each, or "
+                         "a binary STL")
+    coords = []
+    for number, words in vertices:
+        try:
+            coords.append([float(w) for w in words[1:]])
+        except ValueError:
+            coords.append([])
+        if len(coords[-1]) != 3 or words[0].lower() != "vertex":
+            raise InputError(f"{name}, line {number}: {' '.join(words)[:60]!r} is not a vertex: "
+                             "valid is 'vertex' and three numbers")
+    return np.array(coords).reshape(-1, 3, 3)
+
+
+def _check_finite(triangles: np.ndarray, name: str) -> None:
+    """Refuse a file with a NaN or infinite coordinate, naming the first triangle that has one."""
+    bad = ~np.isfinite(triangles).all(axis=(1, 2))
+    if np.any(bad):
+        k = int(np.argmax(bad))
+        raise InputError(f"{name}: triangle {k} (counted from 0) has the vertices "
+                         f"{triangles[k].tolist()}: valid are finite coordinates")
+
+
+def _check_coincident(verts: np.ndarray, faces: np.ndarray, name: str) -> None:
+    """Refuse two triangles on the same three vertices (a surface given twice)."""
+    _, group, counts = np.unique(np.sort(faces, axis=1), axis=0, return_inverse=True,
+                                 return_counts=True)
+    repeated = np.flatnonzero(counts[group.ravel()] > 1)
+    if repeated.size:
+        i, j = repeated[group.ravel()[repeated] == group.ravel()[repeated[0]]][:2]
+        where = ", ".join(f"{c:.6g}" for c in verts[faces[i]].mean(axis=0))
+        raise InputError(f"{name} crosses itself: triangles {i} and {j} (counted from 0) "
+                         f"coincide at ({where}) m; valid is a closed surface that does not "
+                         "cross itself")
+
+
+def _check_self_intersection(verts: np.ndarray, faces: np.ndarray, name: str) -> None:
+    """Refuse a surface two of whose triangles meet without sharing a vertex."""
+    hit = self_intersection(verts, faces)
+    if hit is not None:
+        i, j, point = hit
+        where = ", ".join(f"{c:.6g}" for c in point)
+        raise InputError(f"{name} crosses itself: triangles {i} and {j} (counted from 0) "
+                         f"meet at ({where}) m; valid is a closed surface that does not cross "
+                         "itself")
 
 
 def _weld(triangles: np.ndarray, decimals: int = 9):
+    """Shared vertices (rounded to ``decimals``) and the faces indexing them, in file order."""
     points = np.round(triangles.reshape(-1, 3), decimals)
     verts, inverse = np.unique(points, axis=0, return_inverse=True)
     return verts, inverse.reshape(-1, 3).astype(np.int64)

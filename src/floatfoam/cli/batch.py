@@ -59,9 +59,12 @@ def run(args) -> int:
         raise InputError(f"--out {out}: the file exists; valid is a new file (nothing is "
                          "overwritten)")
     from floatfoam.foam.render import end_time_of
+    from floatfoam.hydrostatics.fluid_domain import check_release
+    from floatfoam.hydrostatics.theory import equilibrium
 
     cases = [load_case(name, args.overrides) for name in args.cases]  # each checked now
     for case in cases:
+        check_release(case, equilibrium(case))  # water under the keel, the release in the tank
         end_time_of(case)  # run.end_time, or the theory's periods to set it from
     check_run_folders(cases, args.levels, args.np)
     tasks = [(str(case.path), level) for case in cases for level in args.levels]

@@ -34,26 +34,34 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    if args.duration is not None and not (math.isfinite(args.duration) and args.duration > 0):
-        raise InputError(f"--duration {args.duration:g}: valid is a positive time in seconds")
+    """--duration is checked, with the release and the depth, by the library
+    (:func:`floatfoam.potential.models.decay_series`) before anything is computed or written;
+    a long series says how far it is every 10 s
+    (:class:`~floatfoam.potential.bounded.Heartbeat`)."""
     if args.nonlinear_restoring and args.model != "cummins":
         raise InputError("--nonlinear-restoring applies to --model cummins only")
     from floatfoam.case import load_case
+    from floatfoam.potential.bounded import Heartbeat
     from floatfoam.potential.models import decay_series, write_series
 
     chosen = dofs.parse_dofs(args.dofs) if args.dofs is not None else None
     case = load_case(args.case, args.overrides)
-    series = decay_series(case, args.model, duration=args.duration,
-                          nonlinear_restoring=args.nonlinear_restoring, dofs=chosen)
-    suffix = ("_nonlinear_restoring" if args.nonlinear_restoring else "") + (
-        "_" + "-".join(d.name for d in chosen) if chosen else "")  # e.g. _heave-roll
-    out = Path(args.out) if args.out else \
-        layout.case_build_dir(case.name) / f"decay_{args.model}{suffix}.csv"
-    write_series(out, series)
-    report = {"case": case.name, "model": args.model, "csv": str(out),
-              "solved_dofs": series.get("dofs"),
-              "samples": int(len(series["time"])), "duration": float(series["time"][-1]),
-              "dofs": _analyse(case, series)}
+    with Heartbeat(f"{case.name}: decay-model") as beat:
+        series = decay_series(case, args.model, duration=args.duration,
+                              nonlinear_restoring=args.nonlinear_restoring, dofs=chosen,
+                              progress=beat)
+        suffix = ("_nonlinear_restoring" if args.nonlinear_restoring else "") + (
+            "_" + "-".join(d.name for d in chosen) if chosen else "")  # e.g. _heave-roll
+        out = Path(args.out) if args.out else \
+            layout.case_build_dir(case.name) / f"decay_{args.model}{suffix}.csv"
+        samples = len(series["time"])
+        beat.stage(f"writing {samples:,} samples to {out}")
+        write_series(out, series)
+        beat.stage(f"analysing {samples:,} samples")
+        report = {"case": case.name, "model": args.model, "csv": str(out),
+                  "solved_dofs": series.get("dofs"),
+                  "samples": int(samples), "duration": float(series["time"][-1]),
+                  "dofs": _analyse(case, series)}
     if args.json:
         print(dump_json(report))
         return 0

@@ -6,7 +6,6 @@ from pathlib import Path
 
 from floatfoam import layout
 from floatfoam.cli.common import add_case_arguments, dump_json
-from floatfoam.errors import InputError
 
 
 def register(sub) -> None:
@@ -23,15 +22,17 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    if not 0.0 < args.max_angle <= 180.0:
-        raise InputError(f"--max-angle {args.max_angle:g}: valid is 0 < DEG ≤ 180")
-    if not 0.0 < args.step <= args.max_angle:
-        raise InputError(f"--step {args.step:g}: valid is 0 < DEG ≤ --max-angle")
+    """--max-angle and --step are checked by the library
+    (:func:`floatfoam.hydrostatics.gz.check_angles`), first; a long curve says how far it is
+    every 10 s."""
     from floatfoam.case import load_case
-    from floatfoam.hydrostatics.gz import gz_curve, plot_gz
+    from floatfoam.hydrostatics.gz import check_angles, gz_curve, plot_gz
+    from floatfoam.potential.bounded import Heartbeat
 
+    check_angles(args.max_angle, args.step)
     case = load_case(args.case, args.overrides)
-    curve = gz_curve(case, args.max_angle, args.step)
+    with Heartbeat(f"{case.name}: gz") as beat:
+        curve = gz_curve(case, args.max_angle, args.step, progress=beat)
     plot = Path(args.plot) if args.plot else layout.case_build_dir(case.name) / "gz.png"
     plot.parent.mkdir(parents=True, exist_ok=True)
     plot_gz(curve, plot, title=f"{case.name}: righting arm")

@@ -18,6 +18,7 @@ from floatfoam import layout
 from floatfoam.case import load_case
 from floatfoam.cli.common import add_case_arguments, dump_json
 from floatfoam.errors import InputError
+from floatfoam.hydrostatics.fluid_domain import check_release
 from floatfoam.layout import LEVELS
 from floatfoam.meshing.levels import POSES, mesh_spec, pose
 
@@ -89,7 +90,7 @@ def run_body(args) -> int:
 
     case = load_case(args.case, args.overrides)
     eq = equilibrium(case)
-    where = pose(case, args.pose, eq)
+    where = check_release(case, eq) if args.pose == "release" else pose(case, args.pose, eq)
     reports = []
     stem = "body" if args.pose == "body" else f"body_{args.pose}"
     folders = {level: _body_folder(args, case, level, stem) for level in _levels(args.level)}
@@ -140,13 +141,17 @@ def _domain_file(args, level: str) -> Path | None:
 
 def run_domain(args) -> int:
     from floatfoam.foam.meshcheck import convert_and_check
+    from floatfoam.hydrostatics.theory import equilibrium
     from floatfoam.meshing.domains import build_domain, format_domain
 
     case = load_case(args.case, args.overrides)
+    eq = equilibrium(case)
+    if args.pose == "release":
+        check_release(case, eq)  # the release inside the tank, as run checks it
     results = []
     outs = {level: _domain_file(args, level) for level in _levels(args.level)}
     for level, out in outs.items():
-        result = build_domain(case, level, args.kind, args.pose, out)
+        result = build_domain(case, level, args.kind, args.pose, out, equilibrium=eq)
         if args.check:
             msh = Path(result["path"])
             result["checkMesh"] = convert_and_check(msh, msh.with_name(f"foam_{msh.stem}"))

@@ -134,11 +134,19 @@ def clamped_bottom(mesh: RunMesh, case: Case, release: Pose,
     clearance = lowest_point(case, release) + tank(case).depth
     if mesh.outer - clearance <= 0.01 * (mesh.outer - mesh.inner):
         return None
+    if clearance <= 0:  # check_release refuses such a release first; no negative distance
+        return (f"the body at {made_at}, where its mesh is made, reaches {-clearance:.3g} m "
+                "past the tank's bottom: a higher release or a deeper tank keeps water under "
+                "it")
+    if clearance > mesh.inner:
+        advice = f"an outer distance of at most {clearance:.3g} m keeps"
+    else:  # the bottom within the rigid zone: the inner distance must shrink as well
+        advice = f"inner and outer distances below {clearance:.3g} m keep"
     return (f"run.outer_distance = {mesh.outer:g} m reaches past the tank's bottom, "
             f"{clearance:.3g} m below the body at {made_at}, where its mesh is made: the "
             f"clamped bottom's first cell "
-            f"layer takes the rest of the motion and may collapse on a finer mesh (an outer "
-            f"distance of at most {clearance:.3g} m keeps the bottom out of the zone)")
+            f"layer takes the rest of the motion and may collapse on a finer mesh ({advice} "
+            "the bottom out of the zone)")
 
 
 def _wedge_angle() -> float:
@@ -215,6 +223,35 @@ def make_polymesh(mesh: RunMesh, run_dir: Path) -> dict | None:
     return parse_check_mesh(Path(log).read_text()) if log and Path(log).exists() else None
 
 
+def _check_square(case: Case, grid: OGrid) -> None:
+    """The O-grid's square must hold the body and leave the outer blocks room to grow from
+    its side cell h = 2b/N, as they are meant to: at least their cell count times h to the
+    tank's ends, bottom and top. Shorter, their cells shrink geometrically, to nothing in a
+    thin one (measured: cylinder_heave released 0.3 m up left 2e-17 m over its square and
+    blockMesh stopped on inward-pointing faces). The release is inside the tank by then
+    (check_release); the message gives the square's valid range at this release, and the
+    release's for this square."""
+    b, zc, h, sides = grid.square, grid.centre_z, grid.side_cell, grid.n(grid.cells_side)
+    blocks = [(grid.half_length, grid.n(grid.cells_horizontal)),  # (reach from the centre,
+              (grid.depth + zc, grid.n(grid.cells_below)),  # cells) to the ends, bottom, top
+              (grid.air_height - zc, grid.n(grid.cells_above))]
+    largest = min(reach / (1.0 + 2.0 * cells / sides) for reach, cells in blocks)
+    if grid.radius < b <= largest * (1 + 1e-12):
+        return
+    heave = case.release["heave"]
+    rest = zc - heave  # the centre's height at equilibrium
+    (ends, _), (_, below), (_, above) = blocks
+    low = b + below * h - grid.depth - rest
+    high = grid.air_height - b - above * h - rest
+    fits = grid.radius < b and low <= high and b + blocks[0][1] * h <= ends
+    release = f"release.heave from {low:.4g} to {high:.4g} m" if fits else "no release.heave"
+    raise InputError(f"mesh.square_half_size = {b:g} m: valid is {grid.radius:g} < "
+                     f"square_half_size ≤ {largest:.4g} m with the body's centre at "
+                     f"z = {zc:.4g} m (release.heave = {heave:g} m), leaving the outer blocks "
+                     f"room for their cells (mesh.cells_horizontal, cells_below, cells_above) "
+                     f"at least as large as the square's; {release} fits this square")
+
+
 def _ogrid_plan(case: Case, level: str, release: Pose, local: bool) -> RunMesh:
     body = case.body
     if not (isinstance(body, EllipticCylinder) and body.b == body.c):
@@ -233,11 +270,7 @@ def _ogrid_plan(case: Case, level: str, release: Pose, local: bool) -> RunMesh:
         cells_below=mesh.cells_below, cells_above=mesh.cells_above,
         factor=level_factor(case, level),
     )
-    b, zc = grid.square, grid.centre_z
-    if not body.b < b < min(grid.half_length, grid.depth + zc, grid.air_height - zc):
-        raise InputError(f"mesh.square_half_size = {b:g}: valid is between the radius "
-                         f"{body.b:g} and the distance from the body to the tank's ends, bottom "
-                         "and top")
+    _check_square(case, grid)
     _check_memory(grid.cell_count(), level, local, "[mesh] cell counts")
     inner, outer = _distances(case, grid.square)
     return RunMesh(kind="ogrid", factor=grid.factor, cells=grid.cell_count(),

@@ -23,9 +23,9 @@ from floatfoam.foam import domain
 from floatfoam.foam.dictionaries import write_dict
 from floatfoam.foam.domain import RunMesh
 from floatfoam.foam.patches import write_initial_fields
+from floatfoam.hydrostatics.fluid_domain import check_release
 from floatfoam.hydrostatics.theory import Equilibrium
 from floatfoam.layout import COMMON_DIR
-from floatfoam.meshing.levels import pose
 from floatfoam.settings import time_scheme_coefficient
 
 
@@ -33,8 +33,10 @@ def release_state(case: Case, eq: Equilibrium) -> dict:
     """The body at release, from the case's equilibrium ``eq``: its pose (the equilibrium
     attitude plus the [release] offsets, :func:`floatfoam.meshing.levels.pose`), the centre of
     mass there (earth frame), its attitude as a rotation tensor, and the equilibrium's z of G
-    and attitude (the reference of the motion series' angles)."""
-    where = pose(case, "release", eq)
+    and attitude (the reference of the motion series' angles). Raises InputError for a
+    release outside the tank (:func:`floatfoam.hydrostatics.fluid_domain.check_release`),
+    before the run plans its mesh or writes anything."""
+    where = check_release(case, eq)
     attitude = rotation(where.heel, where.trim)
     cog = attitude @ case.cog + np.array([0.0, 0.0, where.z_c])
     reference = rotation(eq.heel, eq.trim)

@@ -4,6 +4,8 @@
   of any body at any attitude (closed form where known, else numeric);
 * :mod:`~floatfoam.hydrostatics.closed_forms`: the exact hydrostatics of the memoir's bodies;
 * :mod:`~floatfoam.hydrostatics.theory`: equilibrium, stiffness, GM, verdicts, linear periods;
+* :mod:`~floatfoam.hydrostatics.fluid_domain`: the body in its fluid: water under the keel at
+  equilibrium, the release inside the case's tank (the checks every command goes through);
 * :mod:`~floatfoam.hydrostatics.gz`: the righting-arm curve to large angles;
 * :mod:`~floatfoam.hydrostatics.memoir`: the memoir's method, body by body (the corrected
   formulas); :mod:`~floatfoam.hydrostatics.printed` and

@@ -9,7 +9,10 @@ import numpy as np
 
 from floatfoam.bodies.geometry import rotation
 from floatfoam.case import Case
+from floatfoam.errors import InputError, is_number
 from floatfoam.hydrostatics.theory import equilibrium, sinkage_for_volume
+
+MAX_STEPS = 1000  # heel steps of a GZ curve (check_angles)
 
 
 @dataclass(frozen=True)
@@ -45,11 +48,40 @@ def righting_arm(case: Case, heel: float, trim: float = 0.0, **kw) -> float:
     return float(g[1] - imm.centroid[1])
 
 
-def gz_curve(case: Case, max_angle: float = 90.0, step: float = 1.0, **kw) -> GZCurve:
-    """GZ from 0 to ``max_angle`` degrees every ``step`` degrees, at the equilibrium trim."""
+def check_angles(max_angle: float, step: float) -> int:
+    """The number of heel angles of a GZ curve to ``max_angle`` every ``step`` degrees; an
+    InputError naming --max-angle or --step, the value and the valid range otherwise. At most
+    :data:`MAX_STEPS` steps: each angle is a root solve (superellipsoid_buoy, an implicit
+    surface, takes 72 ms per angle: 1000 steps ≈ 72 s, with a progress line every 10 s)."""
+    if not (is_number(max_angle) and 0.0 < max_angle <= 180.0):
+        raise InputError(f"--max-angle {_text(max_angle)}: valid is 0 < DEG ≤ 180")
+    finest = max_angle / MAX_STEPS
+    if not (is_number(step) and finest <= step <= max_angle):
+        count = f" gives {max_angle / step:.3g} steps;" if is_number(step) and step > 0 else ""
+        raise InputError(f"--step {_text(step)}:{count} valid is {finest:.4g} ≤ DEG ≤ --max-angle "
+                         f"{max_angle:g} (at most {MAX_STEPS} steps)")
+    return len(np.arange(0.0, max_angle + 0.5 * step, step))
+
+
+def _text(value) -> str:
+    return f"{value:g}" if isinstance(value, (int, float)) else repr(value)
+
+
+def gz_curve(case: Case, max_angle: float = 90.0, step: float = 1.0, *, progress=None,
+             **kw) -> GZCurve:
+    """GZ from 0 to ``max_angle`` degrees every ``step`` degrees (:func:`check_angles`), at
+    the equilibrium trim; ``progress`` (a :class:`~floatfoam.potential.bounded.Heartbeat`)
+    hears of each angle."""
+    count = check_angles(max_angle, step)
     trim = equilibrium(case).trim
     angles = np.arange(0.0, max_angle + 0.5 * step, step)
-    gz = np.array([righting_arm(case, math.radians(a), trim, **kw) for a in angles])
+    if progress is not None:
+        progress.stage("GZ curve", total=count, unit="angles")
+    gz = np.empty(len(angles))
+    for i, a in enumerate(angles):
+        gz[i] = righting_arm(case, math.radians(a), trim, **kw)
+        if progress is not None:
+            progress.update(i + 1)
     vanishing = None
     positive = gz[1:] > 0
     if len(positive) and positive[0]:

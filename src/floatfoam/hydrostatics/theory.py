@@ -10,6 +10,7 @@ import numpy as np
 
 from floatfoam.bodies.geometry import rotation
 from floatfoam.case import Case
+from floatfoam.hydrostatics.fluid_domain import check_depth, vertical_extent
 from floatfoam.hydrostatics.immersion import Immersed, immersed
 from floatfoam.hydrostatics.roots import brentq
 from floatfoam.hydrostatics.summary import DofTheory, TheorySummary
@@ -47,7 +48,16 @@ def sinkage_for_volume(case: Case, volume: float, heel: float = 0.0, trim: float
 def equilibrium(case: Case, **kw) -> Equilibrium:
     """Equilibrium of ``case``: ρV = M and B on the vertical through G (Le Barbier's two
     conditions). Upright when G lies on the body's vertical axis; otherwise heel and trim are
-    solved for from the upright position (Powell's hybrid method)."""
+    solved for from the upright position (Powell's hybrid method). Raises InputError when a
+    finite fluid.depth does not exceed the draft there
+    (:func:`floatfoam.hydrostatics.fluid_domain.check_depth`): every command solves it here."""
+    eq = _floating_position(case, **kw)
+    check_depth(case, eq)
+    return eq
+
+
+def _floating_position(case: Case, **kw) -> Equilibrium:
+    """:func:`equilibrium`'s solution, in a fluid without a bottom."""
     volume = case.displacement
     z_c, imm = sinkage_for_volume(case, volume, **kw)
     if abs(case.cog[0]) < 1e-12 * case.body.size and abs(case.cog[1]) < 1e-12 * case.body.size:
@@ -170,9 +180,5 @@ def theory_summary(case: Case, eq: Equilibrium | None = None) -> TheorySummary:
 def lowest_point(case: Case, placement) -> float:
     """z of the body's lowest point in the earth frame at ``placement`` (anything with z_c, heel
     and trim: an :class:`Equilibrium` or a mesh pose), from its surface mesh; upright, the
-    body's exact keel."""
-    if placement.heel == 0.0 and placement.trim == 0.0:
-        return case.body.keel_z + placement.z_c  # exact for the primitives, as the mesh's else
-    vertices, _ = case.body.surface_mesh()
-    rot = rotation(placement.heel, placement.trim)
-    return float((vertices @ rot.T)[:, 2].min()) + placement.z_c
+    body's exact keel (:func:`floatfoam.hydrostatics.fluid_domain.vertical_extent`)."""
+    return vertical_extent(case, placement)[0]

@@ -7,6 +7,10 @@ with a time limit: a child that runs past it, crashes or is
 interrupted is stopped, and the caller gets one :class:`~floatfoam.errors.ComputationError`
 line (or the interrupt) instead of a hang, a core dump or a traceback. The child dies
 with its parent (parent-death signal), so it cannot outlive the command either.
+
+Long work says how far it is on stderr: :class:`Progress` (a line per counted step, at most
+every few seconds) and :class:`Heartbeat` (a line every 10 s from a thread, also for work that
+cannot count: the time-domain models, the GZ curve, a long record's analysis).
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ import contextlib
 import multiprocessing
 import signal
 import sys
+import threading
 import time
 import traceback
 
@@ -105,3 +110,54 @@ class Progress:
         eta_text = f"{eta:.0f} s" if eta == eta else "--"
         print(f"[{self.label}] {done}/{self.total} frequencies, {elapsed:.0f} s, ETA {eta_text}",
               file=sys.stderr, flush=True)
+
+
+class Heartbeat:
+    """A progress line on stderr every ``every`` seconds while long work runs, from a daemon
+    thread: ``[label] stage: done/total unit, elapsed, ETA`` for work that counts
+    (:meth:`update`), ``[label] stage, elapsed`` for work that cannot stop to say how far it is
+    (a fit over a long record, a CSV being written). A context manager; :meth:`stage` names
+    the step under way. Quick work prints nothing, nor does work before the first stage: the
+    checks of the input come first, and a bad input stays one line."""
+
+    def __init__(self, label: str, every: float = 10.0):
+        self.label, self.every = label, every
+        self.start = time.monotonic()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._beat, daemon=True)
+        self.what, self.total, self.unit, self.done = None, None, "", 0.0
+
+    def stage(self, what: str, total: float | None = None, unit: str = "") -> None:
+        """The step under way from now on, and its size when it counts (``update``)."""
+        self.what, self.total, self.unit = what, total, unit
+        self.done, self.stage_start = 0.0, time.monotonic()
+
+    def update(self, done: float) -> None:
+        """How far the counting step is (of ``total``); cheap enough for every step."""
+        self.done = done
+
+    def line(self) -> str:
+        now = time.monotonic()
+        elapsed = f"{now - self.start:.0f} s"
+        if not self.total:
+            return f"[{self.label}] {self.what}, {elapsed}"
+        fraction = min(max(self.done / self.total, 0.0), 1.0)
+        spent = now - self.stage_start
+        eta = f"{spent / fraction * (1.0 - fraction):.0f} s" if fraction > 0 else "--"
+        return (f"[{self.label}] {self.what}: {self.done:.4g}/{self.total:.4g} {self.unit}, "
+                f"{elapsed}, ETA {eta}")
+
+    def _beat(self) -> None:
+        while not self._stop.wait(self.every):
+            if self.what is None:
+                continue
+            with contextlib.suppress(OSError):  # a closed terminal must not end the work
+                print(self.line(), file=sys.stderr, flush=True)
+
+    def __enter__(self) -> Heartbeat:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._stop.set()
+        self._thread.join()

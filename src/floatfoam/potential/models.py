@@ -23,18 +23,28 @@ import numpy as np
 
 from floatfoam.bodies.geometry import rotation
 from floatfoam.dofs import DOFS, HORIZONTAL, free_dofs, released
-from floatfoam.errors import InputError
+from floatfoam.errors import InputError, number
 
 MODELS = ("linear", "nonlinear", "cummins")
 PERIODS = 10  # default duration: ten of the longest characteristic period
 STEPS_PER_PERIOD = 200  # of the shortest characteristic period
+# Memory of a series: float64 arrays per time sample at the models' peak, measured with
+# tracemalloc on the sphere (linear 29, nonlinear 39, cummins 34 + its kernel's, ~46 at 1.5e5
+# samples), rounded up; the cap holds 2.8e6 samples, over 10⁴ periods at 200 steps each, far
+# more than a decay test needs, and is fixed rather than the machine's free memory so that the
+# same duration is valid on every machine. Under it, the longest series (nonlinear: ~8 min,
+# then the analysis) report progress every 10 s (potential.bounded.Heartbeat).
+BYTES_PER_SAMPLE = 48 * 8
+SERIES_MEMORY = 2**30  # bytes
 
 
 def _setup(case):
+    from floatfoam.hydrostatics.fluid_domain import check_release
     from floatfoam.hydrostatics.theory import equilibrium, stiffness_matrix
     from floatfoam.potential.resonance import mass_matrix
 
     eq = equilibrium(case)
+    check_release(case, eq)  # the body inside the tank at release, as the CFD needs it
     g_pos = rotation(eq.heel, eq.trim) @ case.cog + np.array([0.0, 0.0, eq.z_c])
     stiffness = stiffness_matrix(case, eq)
     mass = mass_matrix(case.mass, case.gyradius, rotation(eq.heel, eq.trim))
@@ -51,11 +61,14 @@ def time_scales(mass: np.ndarray, stiffness: np.ndarray) -> np.ndarray:
 
 
 def decay_series(case, model: str, *, duration: float | None = None, dt: float | None = None,
-                 nonlinear_restoring: bool = False, coefficients=None, dofs=None) -> dict:
+                 nonlinear_restoring: bool = False, coefficients=None, dofs=None,
+                 progress=None) -> dict:
     """Motion series of ``case`` by ``model`` (one of MODELS), in file units (degrees).
 
     ``dofs`` (cummins only): the DoFs solved (:class:`floatfoam.dofs.Dof` list), default the
-    ones a free body moves in after the release; the others stay at equilibrium.
+    ones a free body moves in after the release; the others stay at equilibrium. ``duration``
+    is bounded by the series' memory (:func:`check_duration`); ``progress`` (a
+    :class:`~floatfoam.potential.bounded.Heartbeat`) hears how far the integration is.
 
     Returns a dict with the motion-CSV columns (time, x, y, z, roll, pitch, yaw, u, v, w, p,
     q, r) as arrays, plus ``model`` and, for cummins, ``added_mass_inf`` and ``dofs`` (names).
@@ -69,19 +82,22 @@ def decay_series(case, model: str, *, duration: float | None = None, dt: float |
     if model != "nonlinear":
         refuse_capsizing(case, eq, stiffness, model)
     scales = time_scales(mass, stiffness)
-    if duration is None:
+    given = duration is not None
+    if not given:
         duration = PERIODS * float(scales.max()) if len(scales) else 10.0
-    if not duration > 0:
-        raise InputError(f"--duration {duration!r}: valid is a positive number of seconds")
+    if dt is not None:
+        dt = number(dt, "dt", minimum=0.0)
     dt = dt or (float(scales.min()) if len(scales) else duration) / STEPS_PER_PERIOD
+    check_duration(duration, dt, given=given)
     t = np.arange(0.0, duration + 0.5 * dt, dt)
     out = {"model": model, "time": t, "x": np.full_like(t, g_pos[0]),
            "y": np.full_like(t, g_pos[1]), "u": np.zeros_like(t), "v": np.zeros_like(t)}
     if model == "nonlinear":
         from floatfoam.potential.rigid_body import RigidBody, nonlinear_decay
 
+        _stage(progress, model, t)
         res = nonlinear_decay(RigidBody.from_case(case), g_pos[2] + x0[0], eq.heel + x0[1],
-                              eq.trim + x0[2], t)
+                              eq.trim + x0[2], t, progress=progress)
         deg = math.degrees(1.0)
         out.update(z=res["z"], roll=res["heel"] * deg, pitch=res["trim"] * deg,
                    yaw=res["yaw"] * deg, w=res["w"], p=res["omega_earth"][:, 0] * deg,
@@ -93,7 +109,7 @@ def decay_series(case, model: str, *, duration: float | None = None, dt: float |
         x, v = linear_decay(mass, stiffness, x0, t)
     else:
         x, v, a_inf, chosen = _cummins(case, eq, g_pos, stiffness, x0, t,
-                                       nonlinear_restoring, coefficients, dofs)
+                                       nonlinear_restoring, coefficients, dofs, progress)
         out.update(added_mass_inf=a_inf, dofs=[d.name for d in chosen],
                    x=g_pos[0] + x[:, 3], y=g_pos[1] + x[:, 4], u=v[:, 3], v=v[:, 4])
     deg = math.degrees(1.0)
@@ -101,6 +117,36 @@ def decay_series(case, model: str, *, duration: float | None = None, dt: float |
                pitch=math.degrees(eq.trim) + x[:, 2] * deg, yaw=np.zeros_like(t),
                w=v[:, 0], p=v[:, 1] * deg, q=v[:, 2] * deg, r=np.zeros_like(t))
     return out
+
+
+def _stage(progress, model: str, t) -> None:
+    """Tell ``progress`` the integration starts (after every check of the input)."""
+    if progress is not None:
+        progress.stage(f"{model} model", total=float(t[-1]), unit="s simulated")
+
+
+def check_duration(duration, dt: float, *, given: bool = True) -> int:
+    """The number of samples of a series ``duration`` s long at steps of ``dt`` s; an
+    InputError naming --duration, its value, the memory its series would need and the longest
+    valid duration when it is not a finite number from one step to what
+    :data:`SERIES_MEMORY` holds at :data:`BYTES_PER_SAMPLE` (``given``: by the user, else the
+    default, said so)."""
+    longest = (SERIES_MEMORY // BYTES_PER_SAMPLE - 1) * dt
+    valid = f"valid is {dt:.3g} s (one step) to {longest:.6g} s"
+    what = "--duration" if given else "--duration (default: ten of the longest period)"
+    if not (isinstance(duration, (int, float)) and not isinstance(duration, bool)
+            and math.isfinite(duration) and duration > 0):
+        shown = f"{duration:g}" if isinstance(duration, (int, float)) else repr(duration)
+        raise InputError(f"{what} {shown}: {valid}")
+    if duration < dt:
+        raise InputError(f"{what} {duration:g} s: shorter than one time step; {valid}")
+    samples = math.floor(duration / dt + 0.5) + 1
+    need = samples * BYTES_PER_SAMPLE
+    if need > SERIES_MEMORY:
+        raise InputError(f"{what} {duration:g} s: {samples:.3g} samples (one every {dt:.3g} s) "
+                         f"would need ~{need / 2**30:.3g} GiB at {BYTES_PER_SAMPLE} B each; "
+                         f"{valid} (the series within {SERIES_MEMORY / 2**30:g} GiB)")
+    return samples
 
 
 def refuse_capsizing(case, eq, stiffness, model: str) -> None:
@@ -120,7 +166,8 @@ def refuse_capsizing(case, eq, stiffness, model: str) -> None:
                              "stable attitude)")
 
 
-def _cummins(case, eq, g_pos, stiffness, x0, t, nonlinear_restoring, coefficients, dofs):
+def _cummins(case, eq, g_pos, stiffness, x0, t, nonlinear_restoring, coefficients, dofs,
+             progress=None):
     """Cummins' equation in the chosen DoFs; returns (x, v) in all five (heave, roll, pitch,
     surge, sway; the others zero), A∞ of the chosen ones and the chosen DoFs."""
     from floatfoam.potential.radiation import radiation_coefficients
@@ -164,8 +211,9 @@ def _cummins(case, eq, g_pos, stiffness, x0, t, nonlinear_restoring, coefficient
             force[where] = full(x3)[hydrostatic]
             return force
     a_inf = coef.added_mass_inf[block]
+    _stage(progress, "cummins", t)
     x, v = cummins_decay(mass_all[block], stiffness_all[block], a_inf, kernel_t, kernel,
-                         x0_all[pick], t, restoring=restoring)
+                         x0_all[pick], t, restoring=restoring, progress=progress)
     x_all = np.zeros((len(t), len(mass_all)))
     v_all = np.zeros_like(x_all)
     x_all[:, pick], v_all[:, pick] = x, v

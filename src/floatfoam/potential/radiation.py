@@ -30,7 +30,6 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam.dofs import COUPLED, NAMES, PARTNER
-from floatfoam.errors import InputError
 from floatfoam.potential import bem_mesh
 from floatfoam.potential import sections as section_bem
 from floatfoam.potential.bounded import Progress, run_bounded
@@ -218,11 +217,7 @@ def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=N
         panels = int(panels or opts.panels or section_bem.DEFAULT_PANELS)
         nodes = bem_mesh.section_panels(body, eq.z_c, eq.heel, panels)
         half_beam = 0.5 * float(np.ptp(nodes[:, 0]))
-        depth = case.depth
-        if math.isfinite(depth) and float(nodes[:, 1].min()) <= -depth:
-            raise InputError(f"fluid.depth = {depth:g} m: the section's keel is at "
-                             f"{float(nodes[:, 1].min()):.4g} m, on or below the bottom; valid "
-                             "is a depth greater than the draft")
+        depth = case.depth  # greater than the draft: equilibrium() checks it (fluid_domain)
         geometry = {"polygon": body.section_polygon(), "nodes": nodes}
         ell = half_beam
     else:

@@ -98,7 +98,7 @@ def body_rates(heel: float, trim: float, rates: np.ndarray) -> np.ndarray:
 
 def nonlinear_decay(rigid: RigidBody, z_g0: float, heel0: float, trim0: float, t, *,
                     w0: float = 0.0, rates0=(0.0, 0.0, 0.0), rtol: float = 1e-10,
-                    atol: float = 1e-12) -> dict:
+                    atol: float = 1e-12, progress=None) -> dict:
     """Integrate the rigorous equations (module docstring) from rest or given velocities.
 
     Parameters
@@ -108,6 +108,7 @@ def nonlinear_decay(rigid: RigidBody, z_g0: float, heel0: float, trim0: float, t
     t : output times (s), from 0
     w0, rates0 : initial heave velocity of G (m/s) and Euler-angle rates (rad/s)
     rtol, atol : tolerances of the DOP853 integrator (atol relative to the body size and 1 rad)
+    progress : optional; its ``update(t)`` hears the time the integrator has reached (s)
 
     Returns
     -------
@@ -117,7 +118,9 @@ def nonlinear_decay(rigid: RigidBody, z_g0: float, heel0: float, trim0: float, t
     inertia = rigid.inertia
     size = float(getattr(rigid.body, "size", 1.0))
 
-    def rhs(_, y):
+    def rhs(time, y):
+        if progress is not None:
+            progress.update(time)
         z_g, heel, trim, yaw, w = y[:5]
         omega = y[5:]
         force, moment, _ = rigid.hydrostatics(z_g, heel, trim, yaw)
@@ -136,10 +139,21 @@ def nonlinear_decay(rigid: RigidBody, z_g0: float, heel0: float, trim0: float, t
         raise RuntimeError(f"nonlinear decay: the integrator failed ({sol.message})")
     y = sol.y.T
     omega_body = y[:, 5:]
-    omega_earth = np.array([yaw_matrix(s[3]) @ rotation(s[1], s[2]) @ wb
-                            for s, wb in zip(y, omega_body, strict=True)])
+    omega_earth = _to_earth(y[:, 1], y[:, 2], y[:, 3], omega_body)
     return {"time": sol.t, "z": y[:, 0], "heel": y[:, 1], "trim": y[:, 2], "yaw": y[:, 3],
             "w": y[:, 4], "omega_body": omega_body, "omega_earth": omega_earth}
+
+
+def _to_earth(heel, trim, yaw, vectors) -> np.ndarray:
+    """Body-axis vectors (n, 3) in earth axes, R_z(ψ) R_y(θ) R_x(φ) v sample by sample, with
+    arrays (a long series in one pass, not a Python loop)."""
+    p, q, r = np.asarray(vectors, dtype=float).T
+    cp, sp = np.cos(heel), np.sin(heel)
+    ct, st = np.cos(trim), np.sin(trim)
+    cy, sy = np.cos(yaw), np.sin(yaw)
+    y1, z1 = cp * q - sp * r, sp * q + cp * r  # R_x(φ)
+    x2, z2 = ct * p + st * z1, -st * p + ct * z1  # R_y(θ)
+    return np.column_stack([cy * x2 - sy * y1, sy * x2 + cy * y1, z2])  # R_z(ψ)
 
 
 def restoring_force(rigid: RigidBody, z_g0: float, heel0: float, trim0: float):

@@ -94,7 +94,8 @@ def ogilvie_added_mass_inf(omega, added_mass, t, kernel):
 
 
 def cummins_decay(mass, stiffness, a_inf, kernel_t, kernel, x0, t, *, v0=None,
-                  restoring=None, max_iterations: int = 30, tolerance: float = 1e-12):
+                  restoring=None, max_iterations: int = 30, tolerance: float = 1e-12,
+                  progress=None):
     """Free decay by the Cummins (1962) equation
 
         (M + A∞) ẍ + ∫₀^t K(t − τ) ẋ(τ) dτ + F(x) = 0,   F(x) = C x unless ``restoring``,
@@ -114,6 +115,7 @@ def cummins_decay(mass, stiffness, a_inf, kernel_t, kernel, x0, t, *, v0=None,
     t : uniform times from 0
     restoring : optional callable x ↦ F(x) (nonlinear restoring force, e.g. from
         :mod:`floatfoam.potential.rigid_body`)
+    progress : optional; its ``update(t)`` hears the time reached (s) at every step
 
     Returns (x, v), each (len(t), d).
     """
@@ -161,6 +163,8 @@ def cummins_decay(mass, stiffness, a_inf, kernel_t, kernel, x0, t, *, v0=None,
         x[m] = x_pred + 0.25 * h * h * a_new
         v[m] = v_pred + 0.5 * h * a_new
         a = a_new
+        if progress is not None:
+            progress.update(t[m])
     return x, v
 
 
