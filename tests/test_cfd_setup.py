@@ -3,6 +3,7 @@ constraints a release excites, the angles of the motion series, defaults and ref
 cases that extend one another. (The runs themselves: tests/test_cfd_bodies.py.)"""
 
 import math
+import shutil
 
 import numpy as np
 import pytest
@@ -74,18 +75,21 @@ def test_morphing_past_the_clamped_bottom_is_named():
     """The 0.5 D drop of the laboratory sphere starts with its lowest point at the still water,
     0.9 m above the basin's bottom (Kramer et al. 2021: depth 0.900 m): a morphing zone out to
     1.2 m reaches past the bottom (its medium level's bottom cell collapsed), 0.9 m does not."""
-    def warning(name, overrides=()):
-        case, state, mesh = planned(name, overrides)
+    def warning(name, overrides=(), distances=True):
+        zone = ['run.mesh_motion="distances"', "run.inner_distance=0.2",
+                "run.outer_distance=0.9"] if distances else []
+        case, state, mesh = planned(name, [*zone, *overrides])
         return domain.clamped_bottom(mesh, case, state["pose"])
 
     text = warning("lab_sphere_05D", ["run.outer_distance=1.2"])
     assert "run.outer_distance = 1.2 m reaches past the tank's bottom, 0.9 m below" in text
     assert text.endswith("(an outer distance of at most 0.9 m keeps the bottom out of the zone)")
-    assert warning("lab_sphere_05D", ["run.outer_distance=0.9"]) is None
+    assert warning("lab_sphere_05D") is None
     # drop 3's release, 0.26 mm lower: 0.2 mm past the bottom, 0.02 % of the band, lets pass
     assert warning("lab_sphere_05D", ["release.heave=0.1498"]) is None
     assert warning("lab_sphere_05D", ["run.outer_distance=0.92"]) is not None
-    assert warning("sphere") is None  # 0.32 m of morphing, 1.9 m of water below
+    assert warning("sphere", ["run.outer_distance=0.32"]) is None  # 1.9 m of water below
+    assert warning("lab_sphere_05D", distances=False) is None  # the Laplacian has no zone
 
 
 def test_release_about_the_equilibrium_attitude():
@@ -109,9 +113,44 @@ def six_dof(name, run_dir, overrides=()):
     from foamlib import FoamFile
 
     case, state, mesh = planned(name, overrides)
-    render._motion(case, run_dir, mesh, state)
-    coeffs = FoamFile(run_dir / "constant" / "dynamicMeshDict")["sixDoFRigidBodyMotionCoeffs"]
+    body = render._motion(case, run_dir, mesh, state)  # the Laplacian's body condition
+    coeffs = body if body is not None else \
+        FoamFile(run_dir / "constant" / "dynamicMeshDict")["sixDoFRigidBodyMotionCoeffs"]
     return case, state, mesh, coeffs
+
+
+@pytest.mark.parametrize("name, overrides, motion", [
+    ("sphere", (), "laplacian"),  # heave alone, in a wedge
+    ("cylinder_heave", (), "laplacian"),  # heave alone, on the O-grid
+    ("box_bilge_heave", (), "laplacian"),
+    ("box_bilge", (), "distances"),  # heeled: sway, heave and roll
+    ("ellipsoid_roll", (), "distances"),
+    ("lab_sphere", ('run.mesh_pose="equilibrium"',), "distances"),  # moved by the six-DoF scale
+    ("box_bilge", ('run.mesh_motion="laplacian"',), "laplacian"),  # asked for
+])
+def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, motion):
+    """run.mesh_motion "auto": the Laplacian for a release in heave alone on a mesh made at the
+    release, the six-DoF solver's distances otherwise. The Laplacian's dictionaries: the
+    displacement's diffusivity quadratic in the inverse distance from the body, the body's
+    condition holding the six-DoF equations, no sixDoFRigidBodyState function object."""
+    from foamlib import FoamFile
+
+    from floatfoam.layout import COMMON_DIR
+
+    case, state, mesh = planned(name, overrides)
+    assert mesh.motion == motion
+    shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
+    render._control(case, tmp_path, mesh, 1.0)
+    body = render._motion(case, tmp_path, mesh, state)
+    text = (tmp_path / "constant" / "dynamicMeshDict").read_text()
+    functions = FoamFile(tmp_path / "system" / "controlDict")["functions"]
+    if motion == "laplacian":
+        assert "displacementLaplacian" in text and "quadratic inverseDistance (body)" in text
+        assert body["type"] == "sixDoFRigidBodyDisplacement" and "innerDistance" not in body
+        assert body["mass"] == pytest.approx(case.mass * mesh.share)
+        assert "motion" not in functions
+    else:
+        assert body is None and "sixDoFRigidBodyMotionCoeffs" in text and "motion" in functions
 
 
 @pytest.mark.parametrize("name", ["ellipsoid_pitch", "superellipsoid_buoy"])

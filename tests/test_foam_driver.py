@@ -44,6 +44,10 @@ def test_a_stopped_solvers_last_step_is_kept_only_if_finished():
     watcher = LogWatcher()
     steps = watcher.feed(text) + watcher.close_finished()
     assert [s.time for s in steps] == pytest.approx([0.355, 0.36, 0.365])
+    # stopped between the write of its fields and its ExecutionTime line: a written step
+    watcher = LogWatcher()
+    steps = watcher.feed(text[:cut]) + watcher.close_finished(written=lambda t: t > 0.362)
+    assert [s.time for s in steps] == pytest.approx([0.355, 0.36, 0.365])
 
 
 def test_fatal_lines_are_caught_but_not_the_fpe_banner():
@@ -74,6 +78,20 @@ def test_motion_writer_replaces_rows_after_restart(tmp_path):
     MotionWriter(path).append([step(t) for t in (0.2, 0.25)])  # resumed from 0.2
     times = np.loadtxt(path, delimiter=",", skiprows=1)[:, 0]
     assert times.tolist() == [0.1, 0.2, 0.25]
+
+
+def test_a_restart_with_another_step_drops_the_interrupted_runs_later_rows(tmp_path):
+    """Written at 0.06, stopped after 0.0633 (Δt 1/300 s); the restart from 0.06 steps 0.004
+    s (measured on cylinder_heave): the stale 0.0633 row must not stay between 0.06 and 0.064."""
+    path = tmp_path / "motion.csv"
+
+    def step(t, dt):
+        return Step(t, 0.1, dt, np.array([0.0, 0.0, t]), np.eye(3), np.zeros(3), np.zeros(3))
+
+    MotionWriter(path).append([step(0.04, 0.004), step(0.06, 0.004), step(0.063333333, 1 / 300)])
+    MotionWriter(path).append([step(0.064, 0.004), step(0.068, 0.004)])
+    times = np.loadtxt(path, delimiter=",", skiprows=1)[:, 0]
+    assert times.tolist() == [0.04, 0.06, 0.064, 0.068]
 
 
 def test_progress_line():

@@ -39,7 +39,8 @@ FLOATFOAM = Path(sys.executable).with_name("floatfoam")
     ("mesh.cells_sid=10", ["mesh.cells_sid", "did you mean mesh.cells_side"]),
     ('run.static_body="no"', ["run.static_body", "true or false"]),
     ("run.acceleration_relaxation=5", ["run.acceleration_relaxation", "≤ 1"]),
-    ("run.inner_distance=0.5", ["inner_distance", "outer_distance"]),
+    ("run.inner_distance=0.8", ["inner_distance", "outer_distance"]),  # capsize: outer 0.7 m
+    ('run.mesh_motion="rigid"', ["run.mesh_motion", "laplacian", "distances"]),
     ("run.write_interval=5", ["run.write_interval", "end_time"]),
     ("potential.omega_min=5", ["omega_min", "omega_max"]),
     ("mesh.cells_side=1e9", ["mesh.cells_side", "20000"]),
@@ -51,7 +52,8 @@ def test_settings_are_checked_when_the_case_loads(setting, words):
     overrides = [setting]
     if setting.startswith("potential.omega_min"):
         overrides.append("potential.omega_max=1")
-    case_name = "box_bilge" if "bilge" in setting else "cylinder_heave"
+    case_name = "box_bilge" if "bilge" in setting else \
+        "elliptic_cylinder_capsize" if "distance" in setting else "cylinder_heave"
     with pytest.raises(InputError) as err:
         load_case(case_name, overrides)
     message = str(err.value)

@@ -250,15 +250,20 @@ def test_a_setting_added_later_leaves_the_runs_before_it():
 
 
 @pytest.mark.parametrize("name, inner, outer", [
-    ("cylinder_heave", 0.045, 0.24),  # its [run] distances
-    ("elliptic_cylinder", 0.3 * 0.2, 1.6 * 0.2),  # the defaults: 0.3 and 1.6 × its 0.2 m height
+    ("elliptic_cylinder_capsize", 0.1, 0.7),  # its [run] distances
+    ("elliptic_cylinder_roll", 0.3 * 0.2, 1.6 * 0.2),  # the defaults: 0.3 and 1.6 × its 0.2 m
 ])
 def test_scaled_morphing_is_another_run(name, inner, outer):
-    """--morphing 1.5: both distances (set or defaulted) × 1.5, in a run of its own settings."""
+    """--morphing 1.5: both distances (set or defaulted) × 1.5, in a run of its own settings;
+    a run whose mesh follows the body by the Laplacian has none to scale."""
     from floatfoam.foam.driver import scaled_morphing
     from floatfoam.foam.render import release_state
     from floatfoam.hydrostatics.theory import equilibrium
 
+    heave = load_case("elliptic_cylinder")
+    pose = release_state(heave, equilibrium(heave))["pose"]
+    with pytest.raises(InputError, match="laplacian motion, which has none"):
+        scaled_morphing(heave, "coarse", pose, 1.5)
     case = load_case(name)
     pose = release_state(case, equilibrium(case))["pose"]
     wider = scaled_morphing(case, "coarse", pose, 1.5)

@@ -80,6 +80,7 @@ def _is_inert(value, inert) -> bool:
 
 
 MESH_POSES = ("release", "equilibrium")
+MESH_MOTIONS = ("auto", "laplacian", "distances")
 
 
 def time_scheme_coefficient(scheme: str) -> float | None:
@@ -114,6 +115,12 @@ class RunSettings:
     acceleration_relaxation: float = _spec(1.0, minimum=0.0, maximum=1.0,
                                            doc="r: each body acceleration = r·new + "
                                            "(1 − r)·previous, in every coupling iteration")
+    mesh_motion: str = _spec("auto", kind=str, doc="how the mesh follows the body: "
+                             "laplacian (displacementLaplacian, its diffusivity quadratic in "
+                             "the inverse distance from the body: no distance to set), "
+                             "distances (the six-DoF solver: rigid within inner_distance, "
+                             "fixed beyond outer_distance), or auto: laplacian for a release "
+                             "in heave alone on a mesh made at the release, else distances")
     inner_distance: float | None = _spec(None, minimum=0.0)
     outer_distance: float | None = _spec(None, minimum=0.0)
     solver: str | None = _spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
@@ -132,6 +139,14 @@ class RunSettings:
 
     def check(self) -> None:
         time_scheme_coefficient(self.time_scheme)
+        if self.mesh_motion not in MESH_MOTIONS:
+            raise InputError(f"run.mesh_motion = {self.mesh_motion!r}: valid is one of "
+                             f"{', '.join(MESH_MOTIONS)}")
+        if self.mesh_motion == "laplacian" and self.mesh_pose != "release":
+            raise InputError(f"run.mesh_motion = \"laplacian\" with run.mesh_pose = "
+                             f"{self.mesh_pose!r}: valid is mesh_pose \"release\" (a mesh made "
+                             "at rest is moved to the release by the six-DoF solver's scale) "
+                             "or mesh_motion \"distances\"")
         if self.mesh_pose not in MESH_POSES:
             raise InputError(f"run.mesh_pose = {self.mesh_pose!r}: valid is one of "
                              f"{', '.join(MESH_POSES)}")

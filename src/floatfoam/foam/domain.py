@@ -44,7 +44,9 @@ class RunMesh:
         keeps its own x (a trim moves it off x = 0)
     extents : the tank's size along x, y, z, 0 along a direction one cell thick (for the
         domain decomposition)
-    inner, outer : six-DoF morphing distances from the body (rigid inside, fixed beyond)
+    inner, outer : six-DoF morphing distances from the body (rigid inside, fixed beyond), for
+        ``motion`` "distances"
+    motion : how the mesh follows the body, "laplacian" or "distances" (:func:`mesh_motion`)
     ogrid : the O-grid (kind "ogrid"); msh : the gmsh file (other kinds, once generated)
     immersed_error : relative error of the body patch's immersed volume at the pose the mesh is
         made at (run.mesh_pose: the release's by default)
@@ -59,6 +61,7 @@ class RunMesh:
     inner: float
     outer: float
     ogrid: OGrid | None = None
+    motion: str = "distances"
     msh: Path | None = None
     immersed_error: float | None = None
 
@@ -110,7 +113,34 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
     inner, outer = _distances(case, float(body_extents(case.body).min()))
     return RunMesh(kind=kind, factor=level_factor(case, level), cells=None, share=share,
                    x_mid=0.0 if kind == "2d" else None, extents=extents, inner=inner,
-                   outer=outer)
+                   outer=outer, motion=mesh_motion(case, kind))
+
+
+def mesh_motion(case: Case, kind: str) -> str:
+    """How the mesh follows the body (``run.mesh_motion``; "auto" resolved here).
+
+    "laplacian": ``displacementLaplacian`` with the diffusivity ``quadratic inverseDistance
+    (body)`` and the body's point displacement from the six-DoF equations
+    (``sixDoFRigidBodyDisplacement``): the whole tank deforms, the cells near the body move
+    nearly with it, and no distance is set. On the Kramer et al. (2021) sphere (coarse wedge,
+    2 ranks, docs/morphing.md) it damped the first cycles within +3.0 / +4.2 / −6.2 % of the
+    basin at the 0.3 / 0.5 / 0.1 D drops, where the distances' defaults gave −31 / diverged /
+    −19 % and the hand-set distances +12 / +10 / +7 %; the diffusivity's power (quadratic
+    against linear) moved ζ by 4.4 % and 1.0 %.
+    "distances": the six-DoF motion solver, rigid within ``run.inner_distance`` and fixed
+    beyond ``run.outer_distance``: the route of rotations and of a mesh made at rest.
+    "auto" is laplacian for a release in heave alone (a wedge, or no heel nor trim) on a mesh
+    made at the release, and distances otherwise: the Laplacian of the displacement has been
+    measured in heave only, and it cannot follow a large turn."""
+    choice = case.settings.run.mesh_motion
+    if choice != "auto":
+        return choice
+    from floatfoam.dofs import free_dofs
+
+    heave_only = [d.name for d in free_dofs(case.release, axisymmetric=kind == "wedge")] \
+        == ["heave"]
+    return "laplacian" if heave_only and case.settings.run.mesh_pose == "release" \
+        else "distances"
 
 
 def clamped_bottom(mesh: RunMesh, case: Case, release: Pose,
@@ -131,6 +161,8 @@ def clamped_bottom(mesh: RunMesh, case: Case, release: Pose,
     from floatfoam.hydrostatics.theory import lowest_point
     from floatfoam.meshing.levels import tank
 
+    if mesh.motion != "distances":
+        return None
     clearance = lowest_point(case, release) + tank(case).depth
     if mesh.outer - clearance <= 0.01 * (mesh.outer - mesh.inner):
         return None
@@ -276,4 +308,4 @@ def _ogrid_plan(case: Case, level: str, release: Pose, local: bool) -> RunMesh:
     return RunMesh(kind="ogrid", factor=grid.factor, cells=grid.cell_count(),
                    share=grid.thickness / body.length, x_mid=grid.thickness / 2.0,
                    extents=(0.0, 2 * grid.half_length, grid.depth + grid.air_height),
-                   inner=inner, outer=outer, ogrid=grid)
+                   inner=inner, outer=outer, ogrid=grid, motion=mesh_motion(case, "ogrid"))

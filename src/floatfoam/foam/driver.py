@@ -315,6 +315,10 @@ def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool 
     from floatfoam.case import with_overrides
 
     mesh = domain.plan(case, level, pose, local=local)
+    if mesh.motion != "distances":
+        raise InputError(f"--morphing {factor:g} scales the six-DoF solver's distances; this "
+                         f"run's mesh follows the body by the {mesh.motion} motion, which has "
+                         "none: valid is --morphing 1, or --set run.mesh_motion='\"distances\"'")
     return with_overrides(case, [f"run.inner_distance={mesh.inner * factor!r}",
                                  f"run.outer_distance={mesh.outer * factor!r}"])
 

@@ -105,15 +105,18 @@ class LogWatcher:
         self.steps.extend(done)
         return done
 
-    def close_finished(self) -> list[Step]:
-        """Flush the last step if the solver finished it (its ``ExecutionTime`` line is in):
-        for a log whose solver was stopped mid-step, where :meth:`close` would take the state
-        of an unfinished PIMPLE iteration."""
+    def close_finished(self, written=None) -> list[Step]:
+        """Flush the last step if the solver finished it: its ``ExecutionTime`` line is in, or
+        ``written(time)`` says its time folder was written (the solver writes a step's fields
+        before it prints that line). For a log whose solver was stopped mid-step, where
+        :meth:`close` would take the state of an unfinished PIMPLE iteration."""
         done: list[Step] = []
         if self._pending:
             self._line(self._pending.strip(), done)
             self._pending = ""
-        if self.current is not None and self._current_done:
+        finished = self.current is not None and (
+            self._current_done or (written is not None and written(self.current.time)))
+        if finished:
             done.append(self.current)
         self.current = None
         self.steps.extend(done)

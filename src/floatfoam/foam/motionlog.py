@@ -2,7 +2,9 @@
 
 The six-DoF state the solver prints each step (:mod:`floatfoam.foam.logwatch`) becomes a row of
 the motion CSV (columns in :data:`floatfoam.motion.MOTION_COLUMNS`). A resumed run restarts
-from its last written time: its rows replace those of the interrupted run from that time on.
+from its last written time: its rows replace those of the interrupted run after that time
+(OpenFOAM restarts with other time steps, so the interrupted run's later rows fall between
+the new ones and must go).
 The file is never rewritten in place: a new version is written beside it and renamed over it,
 so an interrupt cannot leave it empty or cut.
 """
@@ -33,15 +35,16 @@ class MotionWriter:
         if not rows:
             return
         if self.last_time == -math.inf:  # the first rows of this solver run
-            self._keep_before(rows[0][0])
+            self._keep_before(restart_time(steps))
         with open(self.path, "a") as fh:
             for row in rows:
                 fh.write(",".join(f"{v:.10g}" for v in row) + "\n")
         self.last_time = rows[-1][0]
 
     def _keep_before(self, t: float) -> None:
-        """Rewrite the file with the header and the complete rows before ``t`` (a row cut by
-        an interrupt is dropped), atomically."""
+        """Rewrite the file with the header and the complete rows up to ``t`` (the time the
+        solver restarted from: the interrupted run's later rows, which a restart computes
+        again with other steps, and a row cut by an interrupt are dropped), atomically."""
         kept = [",".join(MOTION_COLUMNS)]
         if self.path.exists():
             for line in self.path.read_text().splitlines()[1:]:
@@ -50,11 +53,20 @@ class MotionWriter:
                     values = [float(c) for c in cells]
                 except ValueError:
                     continue
-                if len(values) == len(MOTION_COLUMNS) and values[0] < t - 1e-12:
+                if len(values) == len(MOTION_COLUMNS) and values[0] <= t + 1e-9 * abs(t):
                     kept.append(line)
         fresh = self.path.with_name(self.path.name + ".new")
         fresh.write_text("\n".join(kept) + "\n")
         os.replace(fresh, self.path)
+
+
+def restart_time(steps: list[Step]) -> float:
+    """The time a solver run started from: its first step's time less that step's Δt (the
+    log prints both to 9 digits), or a hair before its first step when no Δt is printed."""
+    first = steps[0]
+    if first.delta_t is not None and first.delta_t > 0.0:
+        return first.time - first.delta_t
+    return first.time - 1e-6 * max(abs(first.time), 1e-9)
 
 
 def rebuild_motion(log: Path, csv: Path, reference=None) -> None:

@@ -100,8 +100,11 @@ def render(case: Case, level: str, run_dir: Path, state: dict, mesh: RunMesh, *,
     _control(case, run_dir, mesh, end_time)
     _solution(case, run_dir, mesh)
     _fluid(case, run_dir)
-    _motion(case, run_dir, mesh, state)
+    body = _motion(case, run_dir, mesh, state)
     write_initial_fields(run_dir / "0.orig", mesh.patches)
+    if body is not None:  # the Laplacian's body: its displacement from the six-DoF equations
+        field = FoamFile(run_dir / "0.orig" / "pointDisplacement")
+        field["boundaryField"]["body"] = body
     write_dict(run_dir / "system" / "setAlphaFieldDict",
                 {"field": "alpha.water", "type": "plane", "origin": [0.0, 0.0, 0.0],
                  "direction": [0.0, 0.0, 1.0]})
@@ -163,6 +166,8 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
         pimple["PIMPLE"]["correctPhi"] = False
         pimple["PIMPLE"]["nOuterCorrectors"] = 1
         return
+    if mesh.motion != "distances":  # the function object reads the six-DoF motion solver
+        return
     control["functions"]["motion"] = {"type": "sixDoFRigidBodyState",
                                       "libs": ['"libsixDoFRigidBodyState.so"'],
                                       "angleFormat": "degrees"}
@@ -207,14 +212,21 @@ def constraints(case: Case, mesh: RunMesh, cog: list[float]) -> dict:
             "oneAxis": {"sixDoFRigidBodyMotionConstraint": "axis", "axis": axis}}
 
 
-def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> None:
+def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | None:
     """Six-DoF body: the domain holds the share s of the body (a slab t/L, a wedge θ/360°),
     mass s·M and inertia s·M·k² about the body's axes; its initial orientation is its attitude
     at release, so the reported orientation is the body's attitude. A mesh made at
-    equilibrium (``state["mesh_offset"]``) gets G there as the initial centre of mass."""
+    equilibrium (``state["mesh_offset"]``) gets G there as the initial centre of mass.
+
+    The mesh follows the body as ``mesh.motion`` says (:func:`floatfoam.foam.domain.mesh_motion`):
+    the six-DoF motion solver with its distances, or ``displacementLaplacian`` whose body
+    patch carries the same six-DoF dictionary as its point displacement condition
+    (``sixDoFRigidBodyDisplacement``, v1912's src/sixDoFRigidBodyMotion/pointPatchFields):
+    then the body's condition is returned, for the caller to write into pointDisplacement
+    (the condition takes g from the solver, which registers it)."""
     if case.settings.run.static_body:  # body held at its release position (still-water test)
         write_dict(run_dir / "constant" / "dynamicMeshDict", {"dynamicFvMesh": "staticFvMesh"})
-        return
+        return None
     mass = case.mass * mesh.share
     inertia = [mass * k * k for k in case.gyradius]
     # G's x: the slab's middle in a 2D mesh (where G lies along a section's length does not
@@ -243,9 +255,25 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> None:
         coeffs["constraints"] = constraints(case, mesh, made)
     if not np.allclose(orientation, np.eye(3), atol=1e-15):
         coeffs["orientation"] = [round(float(v), 15) for v in orientation.ravel()]
+    if mesh.motion == "laplacian":
+        write_dict(run_dir / "constant" / "dynamicMeshDict", {
+            "dynamicFvMesh": "dynamicMotionSolverFvMesh",
+            "motionSolverLibs": ['"libfvMotionSolvers.so"', '"libsixDoFRigidBodyMotion.so"'],
+            "motionSolver": "displacementLaplacian",
+            "displacementLaplacianCoeffs": {"diffusivity": LAPLACIAN_DIFFUSIVITY},
+        })
+        body = {k: v for k, v in coeffs.items()
+                if k not in ("patches", "innerDistance", "outerDistance")}
+        return {"type": "sixDoFRigidBodyDisplacement", **body, "value": [0.0, 0.0, 0.0]}
     write_dict(run_dir / "constant" / "dynamicMeshDict", {
         "dynamicFvMesh": "dynamicMotionSolverFvMesh",
         "motionSolverLibs": ['"libsixDoFRigidBodyMotion.so"'],
         "motionSolver": "sixDoFRigidBodyMotion",
         "sixDoFRigidBodyMotionCoeffs": coeffs,
     })
+    return None
+
+
+# the displacement's diffusivity 1/d², d the distance from the body: the cells near the body
+# move nearly with it, the far ones little (measured against 1/d: docs/morphing.md)
+LAPLACIAN_DIFFUSIVITY = ("quadratic", "inverseDistance", ["body"])

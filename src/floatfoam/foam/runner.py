@@ -249,7 +249,8 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                 # the solver may have written more steps (and a time folder) since the last
                 # read: stop it, then record what its log holds, so a resume misses no step
                 child.close()
-                rest = watcher.feed(reader.read()) + watcher.close_finished()
+                rest = watcher.feed(reader.read()) + watcher.close_finished(
+                    written=lambda t: _time_written(run_dir, t))
                 if writer and rest:
                     writer.append(rest)
                 err.time = watcher.steps[-1].time if watcher.steps else None
@@ -264,6 +265,14 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
         raise RunError(f"{label}: {name} ended at t = {reached} s, short of end_time = "
                        f"{end_time:g} s; see {log}")
     return watcher.steps
+
+
+def _time_written(run_dir: Path, t: float) -> bool:
+    """Whether the solver wrote the time folder of ``t`` (named as the log names it, %g, in
+    the run or its first processor folder)."""
+    name = f"{t:g}"
+    return any((root / name / "uniform" / "time").is_file()
+               for root in (run_dir, run_dir / "processor0"))
 
 
 def _wait(child: processes.Child, seconds: float) -> None:

@@ -4,7 +4,9 @@ A solver stopped while writing leaves its last time folder half written (files m
 short); OpenFOAM would restart from it and fail, every time. A time folder is complete when
 
 * it holds the initial fields (the files of ``0.orig``), ``uniform/time`` and, for a moving body,
-  ``uniform/sixDoFRigidBodyMotionState`` and ``polyMesh/points``;
+  ``polyMesh/points`` and, when the six-DoF motion solver moves the mesh,
+  ``uniform/sixDoFRigidBodyMotionState`` (the Laplacian's body keeps its state in
+  ``pointDisplacement``);
 * it holds every file the time folder written before it holds, but for the files a restarted
   solver writes only into the time it restarts from (:data:`RESTART_ONLY`);
 * every file ends with OpenFOAM's closing divider line (written last, in ASCII and binary).
@@ -21,7 +23,8 @@ from pathlib import Path
 from floatfoam.layout import MARKERS
 
 FOOTER = b"// ************************************************************************* //"
-MOTION_FILES = ("uniform/sixDoFRigidBodyMotionState", "polyMesh/points")
+MOTION_FILES = ("polyMesh/points",)
+SOLVER_STATE = "uniform/sixDoFRigidBodyMotionState"  # the six-DoF motion solver's
 # interFoam's mesh motion writes its scale field at start-up only, into the time it starts from:
 # after a restart the folder restarted from holds it and the next one written does not.
 RESTART_ONLY = frozenset({"motionScale"})
@@ -65,7 +68,12 @@ def required_files(run_dir: Path, moving: bool) -> set[str]:
     (``0.orig``; ``0/`` also gains files the solver reads but never writes, motionScale)."""
     initial = {p.name for p in (Path(run_dir) / "0.orig").iterdir() if p.is_file()} \
         if (Path(run_dir) / "0.orig").is_dir() else set()
-    return initial | {"uniform/time"} | (set(MOTION_FILES) if moving else set())
+    motion = set(MOTION_FILES) if moving else set()
+    mesh_dict = Path(run_dir) / "constant" / "dynamicMeshDict"
+    if moving and "sixDoFRigidBodyMotionCoeffs" in (mesh_dict.read_text(errors="replace")
+                                                    if mesh_dict.is_file() else ""):
+        motion.add(SOLVER_STATE)
+    return initial | {"uniform/time"} | motion
 
 
 def set_aside_incomplete(run_dir: Path, moving: bool) -> list[Path]:
