@@ -125,6 +125,7 @@ def six_dof(name, run_dir, overrides=()):
     ("box_bilge_heave", (), "laplacian"),
     ("box_bilge", (), "distances"),  # heeled: sway, heave and roll
     ("ellipsoid_roll", (), "distances"),
+    ("superellipsoid_buoy", ("release.heel=0.0", "release.trim=0.0"), "distances"),  # 3D
     ("lab_sphere", ('run.mesh_pose="equilibrium"',), "distances"),  # moved by the six-DoF scale
     ("box_bilge", ('run.mesh_motion="laplacian"',), "laplacian"),  # asked for
 ])

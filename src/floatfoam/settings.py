@@ -120,7 +120,8 @@ class RunSettings:
                              "the inverse distance from the body: no distance to set), "
                              "distances (the six-DoF solver: rigid within inner_distance, "
                              "fixed beyond outer_distance), or auto: laplacian for a release "
-                             "in heave alone on a mesh made at the release, else distances")
+                             "in heave alone on a 2D or wedge mesh made at the release, else "
+                             "distances")
     inner_distance: float | None = _spec(None, minimum=0.0)
     outer_distance: float | None = _spec(None, minimum=0.0)
     solver: str | None = _spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
