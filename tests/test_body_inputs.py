@@ -320,24 +320,23 @@ def test_triangles_meet_as_a_linear_program_says():
     assert 50 < sum(meets) < 250  # both answers are tested
 
 
-def test_the_self_intersection_check_is_fast():
-    """Measured 1.3 ms for the pontoon's 32 triangles and ~0.1 s for 20,480 (icosphere);
-    the bounds leave room for a slow machine."""
-    body = stl_body(PONTOON)
+def test_a_closed_icosphere_does_not_cross_itself():
+    """20,480 triangles sharing vertices and edges everywhere: no false alarm. (Its time is a
+    benchmark's matter: ~0.1 s measured, 1.3 ms for the pontoon's 32 triangles.)"""
     v, f = icosphere(5)
-    for vertices, faces, limit in [(body.vertices, body.faces, 0.1), (v, f, 1.5)]:
-        start = time.perf_counter()
-        assert self_intersection(vertices, faces) is None
-        assert time.perf_counter() - start < limit
+    assert self_intersection(v, f) is None
+
+
+def test_there_are_stl_cases():
+    assert STL_CASES
 
 
 @pytest.mark.parametrize("name", STL_CASES)
 def test_every_stl_case_still_loads(name, capsys):
-    assert STL_CASES
     case = load_case(name)
     assert len(case.body.faces) >= 4
     assert main(["theory", name]) == 0
-    if name == "stl_pontoon":  # as before the self-intersection check: same numbers
+    if name == "stl_pontoon":  # the pontoon's hydrostatics (its README's numbers)
         out = capsys.readouterr().out
         assert "displaced volume V        0.0465536" in out
         assert "roll period                0.621517" in out

@@ -92,6 +92,11 @@ def test_a_restart_with_another_step_drops_the_interrupted_runs_later_rows(tmp_p
     MotionWriter(path).append([step(0.064, 0.004), step(0.068, 0.004)])
     times = np.loadtxt(path, delimiter=",", skiprows=1)[:, 0]
     assert times.tolist() == [0.04, 0.06, 0.064, 0.068]
+    # a restart from 0.06 whose first step the log rounds (time to 8 digits, Δt to 10): the
+    # 0.06 row stays
+    MotionWriter(path).append([step(0.063333333, 0.0033333333)])
+    times = np.loadtxt(path, delimiter=",", skiprows=1)[:, 0]
+    assert times.tolist() == [0.04, 0.06, 0.063333333]
 
 
 def test_progress_line():

@@ -268,7 +268,7 @@ def test_run_refuses_a_release_below_the_bottom_first(capsys, build, no_mesh):
 
 
 def test_the_bottom_warning_never_suggests_a_negative_distance():
-    case = load_case("sphere")
+    case = load_case("sphere", ['run.mesh_motion="distances"'])  # the warning's motion
     state = render.release_state(case, equilibrium(case))
     mesh = domain.plan(case, "coarse", state["pose"])  # inner 0.06 m, outer 0.32 m
     below = domain.clamped_bottom(mesh, case, Pose(z_c=-5.0))

@@ -73,6 +73,22 @@ def wait_gone(run_dir: Path, seconds: float = 15.0) -> None:
     wait_until(lambda: not processes_in(run_dir) and not locked(lock), seconds=seconds)
 
 
+def written(run_dir: Path, t: float) -> bool:
+    """Whether every rank has written time ``t`` whole (timedirs' completeness rule): a signal
+    sent then finds the write finished, not cut short."""
+    roots = sorted(run_dir.glob("processor[0-9]*")) or [run_dir]
+    required = timedirs.required_files(run_dir, moving=True) if run_dir.is_dir() else set()
+    for root in roots:
+        times = timedirs.time_folders(root)
+        found = [i for i, (value, _) in enumerate(times) if abs(value - t) <= 1e-9]
+        if not found:
+            return False
+        previous = times[found[0] - 1][1] if found[0] > 0 else None
+        if not timedirs.is_complete(times[found[0]][1], required, previous):
+            return False
+    return True
+
+
 def last_line(text: str) -> str:
     return text.strip().splitlines()[-1]
 
@@ -122,10 +138,9 @@ def test_resume_after_every_write(tmp_path, ranks):
     holds every step of the solver's log, and it ends where an uninterrupted run ends."""
     extra = ("--np", str(ranks))
     run_dir = tmp_path / CASE / "coarse"
-    root = run_dir / "processor0" if ranks > 1 else run_dir
     for t in ("0.02", "0.04", "0.06", "0.08"):
         driver = start(tmp_path, *extra, end_time=0.1, interval=0.02)
-        wait_until(lambda t=t: (root / t / "uniform" / "time").exists(), driver)
+        wait_until(lambda t=t: written(run_dir, float(t)), driver)
         driver.send_signal(signal.SIGTERM)
         _, err = driver.communicate(timeout=60)
         assert driver.returncode == 143, err

@@ -46,9 +46,16 @@ def test_sweep_removes_only_the_folders_of_dead_commands(tmp_path, monkeypatch):
     holder.send_signal(signal.SIGKILL)
     holder.wait()
     assert folder.is_dir()  # SIGKILL: no finally ran
-    young = tmp_path / "floatfoam-mesh-young"
-    young.mkdir()  # no lock file yet, just made: spared
-    assert scratch.sweep(tmp_path) == [folder] and not folder.exists() and young.is_dir()
+    unlocked = tmp_path / "floatfoam-mesh-abcd1234"
+    unlocked.mkdir()  # no lock file: never ours to remove
+    user = tmp_path / "floatfoam-runs"  # a build folder named like a scratch folder
+    (user / "coarse").mkdir(parents=True)
+    (user / "coarse" / ".owner.lock").write_text("")
+    old = time.time() - 7200
+    for path in (unlocked, user, user / "coarse" / ".owner.lock"):
+        os.utime(path, (old, old))
+    assert scratch.sweep(tmp_path) == [folder] and not folder.exists()
+    assert unlocked.is_dir() and (user / "coarse").is_dir()
 
 
 def test_scratch_dir_is_removed_after_its_block(tmp_path, monkeypatch):
@@ -172,8 +179,9 @@ def test_read_only_and_full_build_folders(tmp_path):
 
 
 def test_disk_note_names_a_full_disk(tmp_path, monkeypatch):
+    monkeypatch.setattr(runner, "free_bytes", lambda folder: runner.LOW_DISK)
     assert runner.disk_note(tmp_path) == ""
-    monkeypatch.setattr(runner, "LOW_DISK", runner.free_bytes(tmp_path) + 1)
+    monkeypatch.setattr(runner, "free_bytes", lambda folder: runner.LOW_DISK - 1)
     assert "is full" in runner.disk_note(tmp_path)
     with pytest.raises(InputError, match="MiB free"):
         runner.check_disk(tmp_path / "not" / "made" / "yet")

@@ -35,16 +35,18 @@ class MotionWriter:
         if not rows:
             return
         if self.last_time == -math.inf:  # the first rows of this solver run
-            self._keep_before(restart_time(steps))
+            # rows up to the restart time, less half the first step for the log's rounding
+            self._keep_before(restart_time(steps) + 0.5 * _first_step(steps))
         with open(self.path, "a") as fh:
             for row in rows:
                 fh.write(",".join(f"{v:.10g}" for v in row) + "\n")
         self.last_time = rows[-1][0]
 
     def _keep_before(self, t: float) -> None:
-        """Rewrite the file with the header and the complete rows up to ``t`` (the time the
-        solver restarted from: the interrupted run's later rows, which a restart computes
-        again with other steps, and a row cut by an interrupt are dropped), atomically."""
+        """Rewrite the file with the header and the complete rows before ``t`` (just after the
+        time the solver restarted from: the interrupted run's later rows, which a restart
+        computes again with other steps, and a row cut by an interrupt are dropped),
+        atomically."""
         kept = [",".join(MOTION_COLUMNS)]
         if self.path.exists():
             for line in self.path.read_text().splitlines()[1:]:
@@ -53,7 +55,7 @@ class MotionWriter:
                     values = [float(c) for c in cells]
                 except ValueError:
                     continue
-                if len(values) == len(MOTION_COLUMNS) and values[0] <= t + 1e-9 * abs(t):
+                if len(values) == len(MOTION_COLUMNS) and values[0] < t:
                     kept.append(line)
         fresh = self.path.with_name(self.path.name + ".new")
         fresh.write_text("\n".join(kept) + "\n")
@@ -62,11 +64,15 @@ class MotionWriter:
 
 def restart_time(steps: list[Step]) -> float:
     """The time a solver run started from: its first step's time less that step's Δt (the
-    log prints both to 9 digits), or a hair before its first step when no Δt is printed."""
+    log rounds the time to 8 digits and Δt to 10), or its first step's time when no Δt is
+    printed."""
     first = steps[0]
-    if first.delta_t is not None and first.delta_t > 0.0:
-        return first.time - first.delta_t
-    return first.time - 1e-6 * max(abs(first.time), 1e-9)
+    return first.time - _first_step(steps)
+
+
+def _first_step(steps: list[Step]) -> float:
+    dt = steps[0].delta_t
+    return dt if dt is not None and dt > 0.0 else 0.0
 
 
 def rebuild_motion(log: Path, csv: Path, reference=None) -> None:

@@ -25,6 +25,7 @@ from floatfoam.errors import ComputationError, InputError
 from floatfoam.foam import processes
 from floatfoam.foam.logwatch import LogWatcher, Step, euler_angles, fatal_block
 from floatfoam.foam.motionlog import RESUMED, MotionWriter
+from floatfoam.foam.timedirs import time_folders
 from floatfoam.interrupts import SignalInterruptError
 from floatfoam.layout import mark_done, step_done
 
@@ -75,8 +76,8 @@ class Stall:
                 return (f"the time step collapsed to {s.delta_t:.2g} s at t = {s.time:g} s"
                         f"{where}: the moving mesh squeezed its cells (a turn too large for "
                         "morphing) or the flow blew up where the mesh motion changes fastest "
-                        "(even at a few degrees); larger run.inner_distance and "
-                        "run.outer_distance spread the deformation")
+                        "(even at a few degrees); on the six-DoF distances' motion, larger "
+                        "run.inner_distance and run.outer_distance spread the deformation")
         return None
 
 
@@ -268,11 +269,13 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
 
 
 def _time_written(run_dir: Path, t: float) -> bool:
-    """Whether the solver wrote the time folder of ``t`` (named as the log names it, %g, in
-    the run or its first processor folder)."""
-    name = f"{t:g}"
-    return any((root / name / "uniform" / "time").is_file()
-               for root in (run_dir, run_dir / "processor0"))
+    """Whether the solver began to write the time folder of ``t`` (in the run or its first
+    processor folder; the log and the folder's name round the time to 8 digits): it writes a
+    step's fields after the step's last coupling iteration, so the state it printed is the
+    step's own."""
+    roots = (run_dir / "processor0", run_dir)
+    return any(abs(value - t) <= 1e-7 * abs(t) for root in roots
+               for value, _ in time_folders(root))
 
 
 def _wait(child: processes.Child, seconds: float) -> None:

@@ -65,7 +65,7 @@ def is_complete(folder: Path, required: set[str], previous: Path | None) -> bool
 
 def required_files(run_dir: Path, moving: bool) -> set[str]:
     """What every written time folder of this run must hold: the fields floatfoam rendered
-    (``0.orig``; ``0/`` also gains files the solver reads but never writes, motionScale)."""
+    (``0.orig``; ``0/`` also gains motionScale, which the solver writes at start-up only)."""
     initial = {p.name for p in (Path(run_dir) / "0.orig").iterdir() if p.is_file()} \
         if (Path(run_dir) / "0.orig").is_dir() else set()
     motion = set(MOTION_FILES) if moving else set()

@@ -126,11 +126,13 @@ class Heartbeat:
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._beat, daemon=True)
         self.what, self.total, self.unit, self.done = None, None, "", 0.0
+        self.stage_start = self.start
 
     def stage(self, what: str, total: float | None = None, unit: str = "") -> None:
         """The step under way from now on, and its size when it counts (``update``)."""
-        self.what, self.total, self.unit = what, total, unit
-        self.done, self.stage_start = 0.0, time.monotonic()
+        # the total and start first, the name last: the thread prints once a name is set
+        self.done, self.stage_start, self.total, self.unit = 0.0, time.monotonic(), total, unit
+        self.what = what
 
     def update(self, done: float) -> None:
         """How far the counting step is (of ``total``); cheap enough for every step."""
