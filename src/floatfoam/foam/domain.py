@@ -122,18 +122,13 @@ def mesh_motion(case: Case, kind: str) -> str:
     "laplacian": ``displacementLaplacian`` with the diffusivity ``quadratic inverseDistance
     (body)`` and the body's point displacement from the six-DoF equations
     (``sixDoFRigidBodyDisplacement``): the whole tank deforms, the cells near the body move
-    nearly with it, and no distance is set. On the Kramer et al. (2021) sphere (coarse wedge,
-    2 ranks, docs/morphing.md) it damped the first cycles within +3.0 / +4.2 / −6.2 % of the
-    basin at the 0.3 / 0.5 / 0.1 D drops, where the distances' defaults gave −31 / diverged /
-    −19 % and the hand-set distances +12 / +10 / +7 %; the diffusivity's power (quadratic
-    against linear) moved ζ by 4.4 % and 1.0 %.
+    nearly with it, and no distance is set.
     "distances": the six-DoF motion solver, rigid within ``run.inner_distance`` and fixed
     beyond ``run.outer_distance``: the route of rotations and of a mesh made at rest.
     "auto" is laplacian for a release in heave alone (a wedge, or no heel nor trim) on a 2D
     section's or a wedge's mesh made at the release, and distances otherwise: the Laplacian
-    has been measured in heave only, it cannot follow a large turn, and in 3D its solve made
-    a step 5 × dearer (superellipsoid_buoy released in heave, coarse, 65,437 cells, 2 ranks:
-    42 steps in 94 s against 19 s)."""
+    has been measured in heave only, it cannot follow a large turn, and in 3D its solve makes
+    a step about 5 × dearer. The measurements behind this rule: docs/morphing.md."""
     choice = case.settings.run.mesh_motion
     if choice != "auto":
         return choice
