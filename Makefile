@@ -6,17 +6,20 @@ SHELL := /bin/bash
 CASE ?= cylinder_heave
 LEVEL ?= coarse
 TIME_LEVEL ?= medium
-NP ?= 2
+# MPI ranks of a run; unset: floatfoam's default, this machine's cores up to 2 (`floatfoam run
+# --help`), the one rule of run, validate and batch
+NP ?=
 SET ?=
 PY := .venv/bin/python
 FF := .venv/bin/floatfoam
 SETARGS := $(foreach s,$(SET),--set $(s))
+NPARGS := $(if $(NP),--np $(NP))
 export WM_PROJECT_DIR := /usr/share/openfoam
 export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export MPLBACKEND := Agg
 
-# the CFD cases: `make <case>` runs one (LEVEL=coarse|medium|fine NP=2 SET="...")
+# the CFD cases: `make <case>` runs one (LEVEL=coarse|medium|fine NP=n SET="...")
 CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cylinder_capsize \
 	parabolic_cylinder hyperbolic_cylinder box_bilge box_bilge_heave sphere sphere_25mm sphere_50mm \
 	ellipsoid_roll ellipsoid_pitch ellipsoid ellipsoid_printed_verdict stl_pontoon superellipsoid_buoy lab_sphere \
@@ -26,17 +29,17 @@ CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cy
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
-	@echo "  CFD runs, one target per case (LEVEL=coarse|medium|fine NP=2):"
+	@echo "  CFD runs, one target per case (LEVEL=coarse|medium|fine NP=n, default the cores up to 2):"
 	@for c in $(CFD_CASES); do echo "    make $$c"; done
 
 setup:  ## install apt packages and the pinned .venv (idempotent)
 	@bash scripts/setup.sh
 
 run: setup  ## main job: the default case (Ito cylinder) at the coarse level, with its theory
-	$(FF) run $(CASE) --level $(LEVEL) --np $(NP) $(SETARGS)
+	$(FF) run $(CASE) --level $(LEVEL) $(NPARGS) $(SETARGS)
 
 $(CFD_CASES): setup
-	$(FF) run $@ --level $(LEVEL) --np $(NP) $(SETARGS)
+	$(FF) run $@ --level $(LEVEL) $(NPARGS) $(SETARGS)
 
 test: setup  ## all tests but the extended ones (make test-extended): unit tests and the coarse OpenFOAM regression runs
 	$(PY) -m pytest -q -m "not extended" --durations=15  # the slowest fifteen: make test must stay ≤ 20 min on 2 cores
@@ -77,8 +80,8 @@ mesh-table: setup  ## mesh levels table (Markdown) of every case, with checkMesh
 report: setup  ## gather every case (theory, potential flow, finished CFD runs) into build/report/
 	$(FF) report
 
-validate: setup  ## grid + time-step convergence (GCI) of CASE: coarse, medium, fine, medium with dt/2 (TIME_LEVEL=fine: fine with dt/2; MORPHING=1.5: coarse with the morphing distances × 1.5)
-	$(FF) validate $(CASE) --np $(NP) --time-level $(TIME_LEVEL) $(if $(MORPHING),--morphing $(MORPHING)) $(SETARGS)
+validate: setup  ## grid + time-step convergence (GCI) of CASE: coarse, medium, fine, medium with dt/2, coarse with its mesh motion spread (TIME_LEVEL=fine: fine with dt/2; MORPHING=F: the distances × F, default 1.5, or the Laplacian's 1/d; MORPHING=no: not run)
+	$(FF) validate $(CASE) $(NPARGS) --time-level $(TIME_LEVEL) $(if $(filter no,$(MORPHING)),--no-morphing,$(if $(MORPHING),--morphing $(MORPHING))) $(SETARGS)
 
 bench-cfd: setup  ## every CFD case, 1 s simulated (FULL=1: whole records): cells, steps, wall, 1 vs 2 ranks
 	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2 --cases $(or $(CASES),$(CFD_CASES)) \
@@ -87,5 +90,20 @@ bench-cfd: setup  ## every CFD case, 1 s simulated (FULL=1: whole records): cell
 bench-theory: setup  ## time `floatfoam theory` for every case (target ≤ 0.6 s median each)
 	$(PY) scripts/bench_theory.py
 
-clean:  ## remove build/ (rendered runs, meshes, figures)
-	rm -rf build
+pictures: setup  ## pictures of the flow of CASE's finished run at LEVEL, in build/CASE/pictures/LEVEL/
+	$(FF) pictures $(CASE) --level $(LEVEL)
+
+# the build folder's contents go, but build/solver (floatfoam's interFoam, which `make setup`
+# builds in minutes); FLOATFOAM_BUILD names the build folder as for floatfoam, and is refused
+# where emptying it would empty /, $HOME or the project
+clean:  ## empty the build folder (build/, or FLOATFOAM_BUILD), keeping build/solver
+	@build="$${FLOATFOAM_BUILD:-build}"; where="$$(realpath -m "$$build")"; \
+	case "$$where" in /|"$$(realpath -m ~)"|"$$(realpath -m .)") \
+		echo "make clean: FLOATFOAM_BUILD=$$build: valid is a build folder, not /, \$$HOME or the project" >&2; exit 2;; esac; \
+	solver="$$(realpath -m build/solver)"; \
+	if [ -d "$$build" ]; then \
+		for entry in "$$build"/* "$$build"/.[!.]*; do \
+			[ -e "$$entry" ] || [ -L "$$entry" ] || continue; \
+			[ "$$(realpath -m "$$entry")" = "$$solver" ] || rm -rf -- "$$entry"; \
+		done; \
+	fi

@@ -15,6 +15,7 @@ from floatfoam.foam import domain, render
 from floatfoam.foam.logwatch import Step
 from floatfoam.foam.runner import Limits, Stall
 from floatfoam.hydrostatics.theory import equilibrium
+from floatfoam.settings import MOTION_DIFFUSIVITIES
 
 
 def planned(name, overrides=()):
@@ -92,6 +93,28 @@ def test_morphing_past_the_clamped_bottom_is_named():
     assert warning("lab_sphere_05D", distances=False) is None  # the Laplacian has no zone
 
 
+def test_the_morphing_zone_reaches_as_far_as_the_tank_allows():
+    """The six-DoF distances' defaults (floatfoam.foam.domain._distances): rigid within half
+    the body's smallest dimension, fixed beyond 0.9 × the room between the body at its release
+    and the nearest held wall: for the capsizing ellipse (half beam 0.1 m, half height 0.15 m,
+    released at 2°) the default tank's 0.9 m of air above the still water. A body that turns
+    over must have room for the circle it sweeps about G (radius 0.17 m, its top from G)."""
+    case, state, mesh = planned("elliptic_cylinder_capsize")
+    heel = math.radians(2.0)
+    top = state["pose"].z_c + math.hypot(0.1 * math.sin(heel), 0.15 * math.cos(heel))
+    assert mesh.inner == pytest.approx(0.1)
+    assert mesh.outer == pytest.approx(0.9 * (0.9 - top), rel=1e-3)  # the surface mesh's
+    assert domain.clamped_bottom(mesh, case, state["pose"]) is None
+    # the ends 0.16 m from the middle: the section fits, the 0.17 m circle it sweeps does not
+    with pytest.raises(InputError, match=r"body turning over reaches 0.01\d* m past its nearest "
+                                         r"held wall; valid is a larger tank \(\[domain\]"):
+        planned("elliptic_cylinder_capsize", ["domain.half_length=0.16"])
+    # stable (G lowered): no circle; the section itself reaches 0.06 m from the ends
+    case, state, mesh = planned("elliptic_cylinder_capsize",
+                                ["mass.cog=[0,0,-0.06]", "domain.half_length=0.16"])
+    assert mesh.outer == pytest.approx(0.9 * 0.06, rel=2e-2)
+
+
 def test_release_about_the_equilibrium_attitude():
     """The body starts heeled by the release from its equilibrium attitude; the solver's
     orientation is that attitude, and the motion series' angles are measured from the
@@ -123,17 +146,21 @@ def six_dof(name, run_dir, overrides=()):
     ("sphere", (), "laplacian"),  # heave alone, in a wedge
     ("cylinder_heave", (), "laplacian"),  # heave alone, on the O-grid
     ("box_bilge_heave", (), "laplacian"),
-    ("box_bilge", (), "distances"),  # heeled: sway, heave and roll
+    ("box_bilge", (), "laplacian"),  # heeled 10°: sway, heave and roll on a 2D section
+    ("elliptic_cylinder_capsize", (), "distances"),  # released to turn over
     ("ellipsoid_roll", (), "distances"),
     ("superellipsoid_buoy", ("release.heel=0.0", "release.trim=0.0"), "distances"),  # 3D
     ("lab_sphere", ('run.mesh_pose="equilibrium"',), "distances"),  # moved by the six-DoF scale
-    ("box_bilge", ('run.mesh_motion="laplacian"',), "laplacian"),  # asked for
+    ("elliptic_cylinder_capsize", ('run.mesh_motion="laplacian"',), "laplacian"),  # asked
+    ("cylinder_heave", ('run.motion_diffusivity="linear"',), "laplacian"),  # 1/d
+    ("elliptic_cylinder_capsize", ('run.motion_diffusivity="linear"',), "distances"),  # ignored
 ])
 def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, motion):
     """run.mesh_motion "auto": the Laplacian for a release in heave alone on a mesh made at the
     release, the six-DoF solver's distances otherwise. The Laplacian's dictionaries: the
-    displacement's diffusivity quadratic in the inverse distance from the body, the body's
-    condition holding the six-DoF equations, no sixDoFRigidBodyState function object."""
+    displacement's diffusivity quadratic in the inverse distance from the body (linear with
+    run.motion_diffusivity "linear"), the body's condition holding the six-DoF equations, no
+    sixDoFRigidBodyState function object."""
     from foamlib import FoamFile
 
     from floatfoam.layout import COMMON_DIR
@@ -146,7 +173,12 @@ def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, mo
     text = (tmp_path / "constant" / "dynamicMeshDict").read_text()
     functions = FoamFile(tmp_path / "system" / "controlDict")["functions"]
     if motion == "laplacian":
-        assert "displacementLaplacian" in text and "quadratic inverseDistance (body)" in text
+        diffusivity = {"quadratic": "diffusivity quadratic inverseDistance (body);",
+                       "linear": "diffusivity inverseDistance (body);"}
+        assert set(diffusivity) == set(MOTION_DIFFUSIVITIES)
+        assert "displacementLaplacian" in text
+        assert diffusivity[case.settings.run.motion_diffusivity] in \
+            [line.strip() for line in text.splitlines()]
         assert body["type"] == "sixDoFRigidBodyDisplacement" and "innerDistance" not in body
         assert body["mass"] == pytest.approx(case.mass * mesh.share)
         assert "motion" not in functions

@@ -87,3 +87,17 @@ def test_exit_code_and_no_traceback_from_the_console_script():
                            "mass.density=2000"], capture_output=True, text=True)
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1
+
+
+def test_version(capsys):
+    """`floatfoam --version`: the installed package's version, pyproject.toml's."""
+    import tomllib
+    from importlib.metadata import version
+    from pathlib import Path
+
+    with pytest.raises(SystemExit) as stop:
+        main(["--version"])
+    assert stop.value.code == 0
+    pyproject = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text())
+    assert capsys.readouterr().out == f"floatfoam {pyproject['project']['version']}\n"
+    assert version("floatfoam") == pyproject["project"]["version"]

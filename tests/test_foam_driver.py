@@ -100,8 +100,52 @@ def test_a_restart_with_another_step_drops_the_interrupted_runs_later_rows(tmp_p
 
 
 def test_progress_line():
-    line = runner.progress_line("c/coarse", Step(1.6, 0.3), 0.0, 3.2, 60.0)
-    assert "t = 1.6/3.2 s (50.0 %)" in line and "ETA 1:00" in line and "Co 0.3" in line
+    """One line, under 120 characters for a long case name, five-digit step count and runs of
+    hours: time, step count, Δt, Courant number, wall time and ETA."""
+    step = Step(1.234, 0.412, 0.0025)
+    line = runner.progress_line("elliptic_cylinder_roll/coarse", step, 12345, 4.5, 3671.0,
+                                3725.0)
+    assert line == ("[elliptic_cylinder_roll/coarse] t = 1.234/4.5 s (27.4 %)  step 12345  "
+                    "Δt 2.5 ms  Co 0.412  wall 1:01:11  ETA 1:02:05")
+    assert "\n" not in line and len(line) < 120
+    bare = runner.progress_line("c/coarse", Step(0.01), 1, 3.2, 2.0, float("nan"))
+    assert bare.endswith("step 1  wall 0:02  ETA --:--")  # no Δt, Co or rate yet
+
+
+def wall_and_time(rates, every=10.0):
+    """(wall, simulated time) at each progress line for piecewise-constant step rates
+    ``rates`` = [(until wall s, simulated s per wall s), …]."""
+    samples, wall, sim = [(0.0, 0.0)], 0.0, 0.0
+    for until, rate in rates:
+        while wall < until:
+            wall, sim = wall + every, sim + every * rate
+            samples.append((wall, sim))
+    return samples
+
+
+def test_the_eta_follows_the_recent_step_rate():
+    """A run whose first two minutes go at a tenth of its later rate (start-up, small Δt), then
+    twice as fast again (issue 39: an ETA from the whole run's average swung from 1:26:55 to
+    10:40 for a run of 15:30): a window after each change, the ETA is the time left at the
+    new rate, where the whole run's average is still far off."""
+    end_time = 5.0
+    rate = runner.StepRate()
+    samples = wall_and_time([(120.0, 0.001), (300.0, 0.01), (420.0, 0.02)])
+    eta = {}
+    for wall, sim in samples:
+        rate.add(wall, sim)
+        eta[wall] = (rate.eta(end_time), sim)
+    assert np.isnan(eta[0.0][0])  # one sample: no rate yet
+    left = end_time - eta[300.0][1]
+    assert eta[300.0][0] == pytest.approx(left / 0.01)
+    assert left / (eta[300.0][1] / 300.0) > 1.5 * eta[300.0][0]  # the whole run's average
+    assert eta[420.0][0] == pytest.approx((end_time - eta[420.0][1]) / 0.02)
+    # within a window of a change, the rate is between the old one and the new
+    mixed = runner.StepRate()
+    for wall, sim in samples:
+        if wall <= 330.0:
+            mixed.add(wall, sim)
+    assert 0.01 < mixed.rate() < 0.02
 
 
 @pytest.fixture

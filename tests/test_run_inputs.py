@@ -39,8 +39,9 @@ FLOATFOAM = Path(sys.executable).with_name("floatfoam")
     ("mesh.cells_sid=10", ["mesh.cells_sid", "did you mean mesh.cells_side"]),
     ('run.static_body="no"', ["run.static_body", "true or false"]),
     ("run.acceleration_relaxation=5", ["run.acceleration_relaxation", "≤ 1"]),
-    ("run.inner_distance=0.8", ["inner_distance", "outer_distance"]),  # capsize: outer 0.7 m
+    ("run.inner_distance=0.8", ["inner_distance", "outer_distance"]),  # outer 0.7 m, below
     ('run.mesh_motion="rigid"', ["run.mesh_motion", "laplacian", "distances"]),
+    ('run.motion_diffusivity="cubic"', ["run.motion_diffusivity", "quadratic", "linear"]),
     ("run.write_interval=5", ["run.write_interval", "end_time"]),
     ("potential.omega_min=5", ["omega_min", "omega_max"]),
     ("mesh.cells_side=1e9", ["mesh.cells_side", "20000"]),
@@ -52,6 +53,8 @@ def test_settings_are_checked_when_the_case_loads(setting, words):
     overrides = [setting]
     if setting.startswith("potential.omega_min"):
         overrides.append("potential.omega_max=1")
+    if "distance" in setting:
+        overrides.append("run.outer_distance=0.7")
     case_name = "box_bilge" if "bilge" in setting else \
         "elliptic_cylinder_capsize" if "distance" in setting else "cylinder_heave"
     with pytest.raises(InputError) as err:
@@ -90,6 +93,8 @@ def test_body_resolution_bound_names_the_memory():
     (["run", "box_bilge", "--set", 'run.time_scheme="CrankNicolson 2"'],
      ["run.time_scheme", "0 ≤ ψ ≤ 1"]),
     (["run", "box_bilge", "--set", 'run.time_scheme="backward"'], ["run.time_scheme", "Euler"]),
+    (["validate", "cylinder_heave", "--set", 'run.motion_diffusivity="cubic"'],
+     ["run.motion_diffusivity = 'cubic'", "valid is one of quadratic, linear"]),
     (["run", "sphere", "--set", "mesh.gmsh.layers_3d=3"],  # its heave meshes a wedge
      ["mesh.gmsh.layers_3d = 3", "3D domains only", "valid is 0"]),
     (["run", "superellipsoid_buoy", "--set", "mesh.gmsh.layers_3d=21"],

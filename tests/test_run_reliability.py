@@ -40,8 +40,9 @@ CASE = "cylinder_heave"
 def command(*extra: str, end_time: float = 0.6, case: str = CASE,
             interval: float | None = None) -> list[str]:
     interval = min(end_time, 0.1) if interval is None else interval
+    ranks = [] if "--np" in extra else ["--np", "1"]  # serial unless asked: the folders' paths
     return [FLOATFOAM, "run", case, "--set", f"run.end_time={end_time}", "--set",
-            f"run.write_interval={interval}", *extra]
+            f"run.write_interval={interval}", *ranks, *extra]
 
 
 def environment(build: Path) -> dict:

@@ -1,6 +1,7 @@
 """Verification: the grid convergence index of Celik et al. (2008) against their worked example,
-the study of four runs on synthetic records with a known answer, and the time-step study's
-run (``--dt-divisor``). The CFD study itself is measured in cases/*/README.md (make validate)."""
+the study of five runs on synthetic records with a known answer, and the time-step and
+mesh-motion studies' runs (``--dt-divisor``, ``--morphing``). The CFD study itself is measured
+in cases/*/README.md (make validate)."""
 
 import dataclasses
 import json
@@ -26,10 +27,12 @@ from floatfoam.analysis.measured import reference_record
 from floatfoam.analysis.plots import free_decay_curve
 from floatfoam.analysis.report import Sources, _overlay, build_report
 from floatfoam.analysis.validation import (
+    DEFAULT_MORPHING,
     _convergence,
     measured,
     numerical_uncertainty,
     plan,
+    study_morphing,
     validate_case,
     write_study,
 )
@@ -102,6 +105,23 @@ def test_an_implausible_order_is_flagged_and_bounded_at_the_formal_one():
     assert "beyond" not in _convergence(plausible.as_dict())
 
 
+def test_u_num_adds_the_mesh_motions_change():
+    """U_num = √(GCI_levels² + GCI_time² + U_motion²), U_motion the whole change with the mesh
+    motion varied, unsigned: 3 %, 4 % and −12 % give 13 %; without it, 5 %."""
+    r = math.sqrt(2.0)
+    grid = gci.three_grids(1.0, 1.01, 1.03, r, r)  # p = 2
+    time = gci.two_level(1.0, 1.001, 2.0, 1.0)
+    g, t = grid.gci_fine, time.gci_coarse
+    assert numerical_uncertainty(grid, time, 0.12) == pytest.approx(math.sqrt(g**2 + t**2
+                                                                              + 0.12**2))
+    assert numerical_uncertainty(grid, time, None) == pytest.approx(math.hypot(g, t))
+    assert numerical_uncertainty("diverges", time, 0.12) is None  # a GCI unknown: no U_num
+    from floatfoam.analysis.validation import motion_uncertainty
+
+    assert motion_uncertainty({"values": [1.0, 0.88], "relative_change": -0.12}) == 0.12
+    assert motion_uncertainty({"note": "mesh motion not studied"}) is None
+
+
 @pytest.mark.parametrize("values, kind", [
     ((1.0, 1.1, 1.15), gci.DIVERGENT_MONOTONIC),  # |ε21| > |ε32|: moving away
     ((1.0, 1.2, 1.1), gci.DIVERGENT_OSCILLATORY),  # the swing grows as h falls
@@ -143,15 +163,18 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     """Periods following T = 0.6 + 0.02 (h/h_f)² on the three levels and ζ constant, and the
     halved time step 0.3 % shorter than its level: the study says monotonic convergence of
     order 2 towards 0.6 s, and the time GCI is Roache's 3·2·0.3 %, whichever level is halved.
-    The coarse level with wider morphing distances damps a fifth more (ζ 0.12): the morphing
-    study says +20 %, and it stays out of the levels' study and U_num."""
+    The coarse level with its mesh motion spread wider (cylinder_heave's Laplacian: 1/d) damps
+    a fifth more (ζ 0.12) and swings 1 % slower: the mesh-motion study says +20 % and +1 %,
+    it stays out of the levels' study, and U_num = √(GCI_levels² + GCI_time² + 1 %²) of T_d.
+    Without that run, U_num is the two GCIs' and the study says the mesh motion was not
+    studied."""
     cells = {"coarse": 11280, "medium": 22857, "fine": 45120}
     runs = plan(time_level, morphing)
     assert runs[3] == (time_level, 2, 1.0)
     assert runs[4:] == ((("coarse", 1, 1.5),) if morphing else ())
     for level, divisor, factor in runs:
         h = math.sqrt(cells["fine"] / cells[level])
-        period = (0.6 + 0.02 * h**2) * (0.997 if divisor > 1 else 1.0)
+        period = (0.6 + 0.02 * h**2) * (0.997 if divisor > 1 else 1.01 if factor != 1 else 1.0)
         _synthetic_run(tmp_path, layout.run_name(level, divisor, factor), cells[level], period,
                        0.12 if factor != 1 else 0.1, 0.002)
     # a measured damping ratio beside it (this test's own number): in the study, table and plot
@@ -161,20 +184,35 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     assert result["dofs"]["heave"]["reference"] == {"damping_ratio": [0.098, 0.004, "this test"]}
     assert result["runs"][3] == f"{time_level}-dt2"
     zeta = result["dofs"]["heave"]["quantities"]["damping_ratio"]
+    period = result["dofs"]["heave"]["quantities"]["period"]
     if morphing:
         assert result["runs"][4] == "coarse-morph1.5"
+        assert result["mesh_motion"] == {
+            "motion": "laplacian", "diffusivity": "1/d²", "factor": 1.5,
+            "run": "coarse-morph1.5", "variant": "diffusivity 1/d instead of 1/d²",
+            "studied": True, "note": ""}
         # the fit of a 2 ms-sampled record recovers ζ to ~1e-4 of 0.1: the change within 1 %
         assert zeta["morphing"]["relative_change"] == pytest.approx(0.2, rel=0.01)
-        assert result["dofs"]["heave"]["quantities"]["period"]["morphing"][
-            "relative_change"] == pytest.approx(0.0, abs=1e-3)
+        assert zeta["motion_uncertainty"] == pytest.approx(0.2, rel=0.01)
+        assert period["morphing"]["relative_change"] == pytest.approx(0.01, rel=0.01)
+        assert period["motion_uncertainty"] == pytest.approx(0.01, rel=0.01)
     else:
-        assert "not run" in zeta["morphing"]["note"]
+        assert result["mesh_motion"] == {
+            "motion": "laplacian", "diffusivity": "1/d²", "studied": False,
+            "note": "mesh motion not studied (floatfoam validate --no-morphing)"}
+        assert "not studied" in zeta["morphing"]["note"]
+        assert period["motion_uncertainty"] is None
+        # a mesh-motion run that did not finish: not studied either, and said so
+        unfinished = validate_case(case, tmp_path, time_level, 2.0)
+        assert unfinished["mesh_motion"]["note"] == \
+            "mesh motion not studied: needs coarse and coarse-morph2 finished"
+        assert unfinished["dofs"]["heave"]["quantities"]["period"]["uncertainty"] == \
+            pytest.approx(period["uncertainty"])
     # analysed for the other level's halving, the study says which one was run
     other = validate_case(load_case("cylinder_heave"), tmp_path,
                           "fine" if time_level == "medium" else "medium")
     assert f"--time-level {time_level}" in \
         other["dofs"]["heave"]["quantities"]["period"]["time"]["note"]
-    period = result["dofs"]["heave"]["quantities"]["period"]
     assert period["grid"]["kind"] == gci.MONOTONIC
     # the decay fit of a 2 ms-sampled record is off by up to ~5e-5 s here, and the level
     # differences are 0.02–0.04 s: the order within 2 %, the limit within 2e-4 s
@@ -182,19 +220,23 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     assert period["grid"]["extrapolated"] == pytest.approx(0.6, abs=2e-4)
     assert period["time"]["relative_error"] == pytest.approx(0.003, rel=0.02)
     assert period["time"]["gci_coarse"] == pytest.approx(3 * 2 * 0.003, rel=0.02)
+    levels_and_time = math.hypot(period["grid"]["gci_fine"], period["time"]["gci_coarse"])
     assert period["uncertainty"] == pytest.approx(
-        math.hypot(period["grid"]["gci_fine"], period["time"]["gci_coarse"]))
+        math.hypot(levels_and_time, period["motion_uncertainty"]) if morphing
+        else levels_and_time)
     paths = write_study(result, tmp_path / "cylinder_heave" / "validation")
     assert all(p.is_file() and p.stat().st_size > 0 for p in paths)
-    assert "monotonic convergence" in paths[1].read_text()
-    assert f"the {time_level} level against its time steps halved" in paths[1].read_text()
-    assert "| 0.098 ± 0.004 |" in paths[1].read_text()
-    assert ("Morphing distances × 1.5 at the coarse level" in paths[1].read_text()) == \
-        bool(morphing)
-    # analysed again without --morphing, the study keeps the morphing run it had, and not a
-    # later one (ζ 0.5: it would show)
-    _synthetic_run(tmp_path, "coarse-morph2", cells["coarse"], 0.62, 0.05, 0.002)
-    assert validate_case(case, tmp_path, time_level)["morphing"] == morphing
+    md = paths[1].read_text()
+    assert "monotonic convergence" in md
+    assert f"the {time_level} level against its time steps halved" in md
+    assert "| 0.098 ± 0.004 |" in md
+    assert "| U_motion | U_num |" in md
+    assert ("Mesh motion: the coarse level with diffusivity 1/d instead of 1/d² "
+            "(coarse-morph1.5); U_motion = |change|:" in md) == bool(morphing)
+    assert ("U_num = √(GCI_levels² + GCI_time² + U_motion²)" in md) == bool(morphing)
+    assert ("without an error of the mesh motion: mesh motion not studied (floatfoam "
+            "validate --no-morphing)" in md) == (not morphing)
+    assert "The runs' mesh follows the body by the Laplacian (diffusivity 1/d²)" in md
     # the report gathers it: the study's tables and figure, and the extrapolated row
     cases = tmp_path / "cases"
     cases.mkdir()
@@ -207,7 +249,8 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     # the summary line of the study, ending with the damping's change with the distances
     line = next(x for x in md.splitlines() if x.startswith("| cylinder_heave | heave |"))
     assert line.startswith(f"| cylinder_heave | heave | {5 if morphing else 4} | 0.6")
-    assert line.endswith("| +20 % (× 1.5) |" if morphing else "| — |")
+    assert line.endswith("| +20 % (diffusivity 1/d instead of 1/d²) |" if morphing
+                         else "| — |")
     assert "| heave | CFD fine ± U_num | 0.6" in md
     assert (tmp_path / "report" / "cylinder_heave" / "convergence.png").is_file()
 
@@ -227,12 +270,19 @@ def test_smaller_steps_is_another_run():
 
 
 def test_a_setting_added_later_leaves_the_runs_before_it():
-    """A field marked ``added`` (mesh.gmsh.layers_height_3d, 2026-12-03) is out of the stamp
-    at its default, and one at its ``inert`` value (0 prism layers) too, so the runs made
-    before they existed keep theirs. The layers a body given by triangles takes by default
-    (3 since 2026-12-03) are in it: its runs made without them are of other settings."""
+    """A field marked ``added`` (mesh.gmsh.layers_height_3d and run.motion_diffusivity,
+    2026-12-03) is out of the stamp at its default, written out or not, and one at its
+    ``inert`` value (0 prism layers) too, so the runs made before they existed keep theirs.
+    The layers a body given by triangles takes by default (3 since 2026-12-03) are in it: its
+    runs made without them are of other settings."""
     from floatfoam.settings import TRIANGLE_LAYERS, stamped
 
+    heave = load_case("cylinder_heave")
+    assert "motion_diffusivity" not in stamped(heave.settings)["run"]
+    quadratic = load_case("cylinder_heave", ['run.motion_diffusivity="quadratic"'])
+    linear = load_case("cylinder_heave", ['run.motion_diffusivity="linear"'])
+    assert settings_digest(quadratic, "coarse") == settings_digest(heave, "coarse")
+    assert settings_digest(linear, "coarse") != settings_digest(heave, "coarse")
     solid = stamped(load_case("ellipsoid_roll").settings)["mesh"]["gmsh"]
     assert "growth_3d" in solid and "layers_3d" not in solid and "layers_height_3d" not in solid
     case = load_case("superellipsoid_buoy")
@@ -249,27 +299,62 @@ def test_a_setting_added_later_leaves_the_runs_before_it():
                                                                  "coarse")
 
 
-@pytest.mark.parametrize("name, inner, outer", [
-    ("elliptic_cylinder_capsize", 0.1, 0.7),  # its [run] distances
-    ("elliptic_cylinder_roll", 0.3 * 0.2, 1.6 * 0.2),  # the defaults: 0.3 and 1.6 × its 0.2 m
+@pytest.mark.parametrize("name, overrides", [
+    ("elliptic_cylinder_capsize", ("run.inner_distance=0.1", "run.outer_distance=0.7")),  # set
+    ("ellipsoid_roll", ()),  # defaulted from the body and the tank (3D)
 ])
-def test_scaled_morphing_is_another_run(name, inner, outer):
-    """--morphing 1.5: both distances (set or defaulted) × 1.5, in a run of its own settings;
-    a run whose mesh follows the body by the Laplacian has none to scale."""
-    from floatfoam.foam.driver import scaled_morphing
+def test_scaled_morphing_is_another_run(name, overrides):
+    """--morphing 1.5: both distances × 1.5 when the case sets them, ÷ 1.5 when they are the
+    defaults, which reach as far as the tank allows; in a run of its own settings."""
+    from floatfoam.foam import domain
+    from floatfoam.foam.driver import morphing_variant, scaled_morphing
     from floatfoam.foam.render import release_state
     from floatfoam.hydrostatics.theory import equilibrium
 
-    heave = load_case("elliptic_cylinder")
-    pose = release_state(heave, equilibrium(heave))["pose"]
-    with pytest.raises(InputError, match="laplacian motion, which has none"):
-        scaled_morphing(heave, "coarse", pose, 1.5)
-    case = load_case(name)
+    case = load_case(name, list(overrides))
     pose = release_state(case, equilibrium(case))["pose"]
+    mesh = domain.plan(case, "coarse", pose)
+    assert mesh.motion == "distances"
     wider = scaled_morphing(case, "coarse", pose, 1.5)
-    assert wider.settings.run.inner_distance == pytest.approx(1.5 * inner)
-    assert wider.settings.run.outer_distance == pytest.approx(1.5 * outer)
+    scale = 1.5 if overrides else 1 / 1.5
+    assert wider.settings.run.inner_distance == pytest.approx(scale * mesh.inner)
+    assert wider.settings.run.outer_distance == pytest.approx(scale * mesh.outer)
+    if overrides:
+        assert (mesh.inner, mesh.outer) == (0.1, 0.7)
+        assert morphing_variant(case, "distances", 1.5) == "distances × 1.5"
+    else:
+        assert morphing_variant(case, "distances", 1.5).startswith("distances ÷ 1.5 (their "
+                                                                  "defaults reach as far")
     assert settings_digest(wider, "coarse") != settings_digest(case, "coarse")
+    assert scaled_morphing(case, "coarse", pose, 1) is case
+
+
+def test_scaled_morphing_of_the_laplacian_spreads_its_diffusivity():
+    """A mesh that follows the body by the Laplacian has no distances: a factor > 1 gives it
+    the diffusivity 1/d instead of 1/d², which spreads the deformation further from the body;
+    a factor < 1 is refused (no narrower Laplacian is offered), and so is a wider one of a case
+    already at 1/d; the distances ignore the setting."""
+    from floatfoam.foam import domain
+    from floatfoam.foam.driver import morphing_variant, scaled_morphing
+    from floatfoam.foam.render import release_state
+    from floatfoam.hydrostatics.theory import equilibrium
+
+    case = load_case("elliptic_cylinder")  # heave alone on a 2D section
+    pose = release_state(case, equilibrium(case))["pose"]
+    assert domain.plan(case, "coarse", pose).motion == "laplacian"
+    assert case.settings.run.motion_diffusivity == "quadratic"
+    for factor in (1.5, 2.0):
+        wider = scaled_morphing(case, "coarse", pose, factor)
+        assert wider.settings.run.motion_diffusivity == "linear"
+        assert wider.settings.run.inner_distance == case.settings.run.inner_distance
+        assert settings_digest(wider, "coarse") != settings_digest(case, "coarse")
+    assert morphing_variant(case, "laplacian", 1.5) == "diffusivity 1/d instead of 1/d²"
+    with pytest.raises(InputError) as err:
+        scaled_morphing(case, "coarse", pose, 0.5)
+    assert "\n" not in str(err.value)
+    assert "--morphing 0.5" in str(err.value) and "narrower than 1/d²" in str(err.value)
+    with pytest.raises(InputError, match="1/d. is the widest offered"):
+        scaled_morphing(wider, "coarse", pose, 1.5)
     assert scaled_morphing(case, "coarse", pose, 1) is case
 
 
@@ -280,6 +365,8 @@ def test_scaled_morphing_is_another_run(name, inner, outer):
     (["validate", "cylinder_heave", "--time-level", "coarse"], "--time-level"),
     (["validate", "cylinder_heave", "--morphing", "1"], "--morphing"),
     (["validate", "cylinder_heave", "--morphing", "-2"], "--morphing"),
+    (["validate", "cylinder_heave", "--morphing", "0.5"], "narrower than 1/d²"),  # Laplacian
+    (["validate", "cylinder_heave", "--morphing", "1.5", "--no-morphing"], "not allowed"),
     (["run", "cylinder_heave", "--morphing", "0"], "--morphing"),
     (["run", "cylinder_heave", "--morphing", "1.0000001"], "significant digits"),
 ])
@@ -441,7 +528,7 @@ def test_a_changed_default_makes_a_finished_run_foreign(tmp_path):
     assert settings_digest(case, "medium", divisor=2) != settings_digest(case, "medium")
 
 
-def test_a_study_checks_its_four_runs_before_the_first(tmp_path):
+def test_a_study_checks_its_runs_before_the_first(tmp_path):
     """A fine run of other settings is refused before the coarse one has started (no hours of
     CFD lost to a refusal at the third run): one line, exit 2, nothing written."""
     fine = tmp_path / "cylinder_heave" / "fine" / layout.MARKERS
@@ -469,8 +556,7 @@ def test_a_study_is_of_the_settings_its_runs_were_made_with(tmp_path):
         _synthetic_run(tmp_path, layout.run_name(level, divisor, factor), cells[level], 0.61,
                        0.1, 0.002)
     env = {"FLOATFOAM_BUILD": str(tmp_path), "PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg"}
-    argv = [sys.executable, "-m", "floatfoam.cli", "validate", "cylinder_heave", "--no-run",
-            "--morphing", "1.5"]
+    argv = [sys.executable, "-m", "floatfoam.cli", "validate", "cylinder_heave", "--no-run"]
     before = sorted(tmp_path.rglob("*"))
     out = subprocess.run([*argv, "--set", "run.time_scheme=CrankNicolson 1"], env=env,
                          capture_output=True, text=True, timeout=120)
@@ -642,10 +728,16 @@ def test_a_measured_record_that_is_not_one_is_refused(tmp_path):
         load_case(str(folder))
 
 
-def test_a_failed_run_leaves_the_study_of_the_others(tmp_path, monkeypatch):
-    """Control flow only, no solver: when one run of the study fails (here the halved time
-    step, made to raise RunError), the others are still analysed and written, and the
-    command exits 1 naming the failed run."""
+@pytest.mark.parametrize("extra, planned", [
+    ((), ["coarse", "medium", "fine", "medium-dt2", "coarse-morph1.5"]),  # by default
+    (("--no-morphing",), ["coarse", "medium", "fine", "medium-dt2"]),
+])
+def test_a_failed_run_leaves_the_study_of_the_others(tmp_path, monkeypatch, extra, planned):
+    """Control flow only, no solver: the study runs the mesh-motion run by default
+    (--no-morphing: four runs); when runs of the study fail (here the halved time step and the
+    mesh-motion run, made to raise RunError), the others are still analysed and written, the
+    study says the mesh motion was not studied, and the command exits 1 naming the failed
+    runs."""
     from floatfoam.cli import build_parser
     from floatfoam.cli import validate as cli_validate
     from floatfoam.foam import driver
@@ -656,20 +748,48 @@ def test_a_failed_run_leaves_the_study_of_the_others(tmp_path, monkeypatch):
         _synthetic_run(tmp_path, level, n, 0.6 + 0.02 * (cells["fine"] / n), 0.1, 0.002)
     monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path))
     monkeypatch.setattr(driver, "check_run", lambda *a, **k: None)
+    started = []
 
     def run_case(case, level, np_, *, equilibrium, time_step_divisor=1, morphing=1.0):
-        run = layout.run_dir(case.name, level, tmp_path, time_step_divisor=time_step_divisor)
-        if time_step_divisor == 1:
+        run = layout.run_dir(case.name, level, tmp_path, time_step_divisor=time_step_divisor,
+                             morphing=morphing)
+        started.append(run.name)
+        if time_step_divisor == 1 and morphing == 1:
             return driver.RunResult(run, run / "motion.csv", {"cells": cells[level]}, False, True)
         raise RunError(f"{case.name}/{run.name}: diverged (raised by this test)")
 
     monkeypatch.setattr(driver, "run_case", run_case)
-    args = build_parser().parse_args(["validate", "cylinder_heave"])
+    args = build_parser().parse_args(["validate", "cylinder_heave", *extra])
     assert cli_validate.run(args) == 1
+    assert started == planned
     study = json.loads((tmp_path / "cylinder_heave" / "validation" / "validation.json")
                        .read_text())
     assert study["runs"] == ["coarse", "medium", "fine"]
     assert study["dofs"]["heave"]["quantities"]["period"]["grid"]["kind"] == gci.MONOTONIC
+    assert study["mesh_motion"]["studied"] is False
+    assert study["mesh_motion"]["note"].startswith("mesh motion not studied")
+    assert study["morphing"] == (None if extra else DEFAULT_MORPHING)
+
+
+def test_the_mesh_motion_runs_factor(tmp_path):
+    """The study's mesh-motion run: five runs by default, the last the coarse level with
+    factor 1.5; none with --no-morphing; --morphing F names another; without either, the
+    study made again keeps the factor of the one already written while its run is finished
+    (not whichever `floatfoam run --morphing` finished last)."""
+    assert DEFAULT_MORPHING == 1.5
+    assert len(plan()) == 5 and plan()[4] == ("coarse", 1, 1.5)
+    assert len(plan(morphing=None)) == 4
+    assert study_morphing("cylinder_heave", tmp_path) == DEFAULT_MORPHING  # no study yet
+    assert study_morphing("cylinder_heave", tmp_path, skip=True) is None
+    assert study_morphing("cylinder_heave", tmp_path, 2.0) == 2.0
+    folder = tmp_path / "cylinder_heave" / "validation"
+    folder.mkdir(parents=True)
+    (folder / "validation.json").write_text(json.dumps({"morphing": 2.0}))
+    assert study_morphing("cylinder_heave", tmp_path) == DEFAULT_MORPHING  # its run is gone
+    _synthetic_run(tmp_path, "coarse-morph2", 11280, 0.62, 0.1, 0.002)
+    _synthetic_run(tmp_path, "coarse-morph3", 11280, 0.62, 0.1, 0.002)
+    assert study_morphing("cylinder_heave", tmp_path) == 2.0
+    assert study_morphing("cylinder_heave", tmp_path, skip=True) is None
 
 
 def test_a_study_written_before_a_quantity_joined_it_still_reports(tmp_path):
@@ -691,6 +811,10 @@ def test_a_study_written_before_a_quantity_joined_it_still_reports(tmp_path):
                                          "floatfoam validate --no-run)"] * 2
     assert morphing_rows(old, "heave") == []
     assert "## heave" in study_markdown(old)
+    assert "(a study written before the mesh motion joined U_num)" in study_markdown(old)
+    # its morphing run, before U_motion joined U_num, scaled the distances
+    assert ("Mesh motion: the coarse level with distances × 1.5 (a study written before "
+            "U_motion joined U_num):") in study_markdown(old | {"morphing": 1.5})
 
 
 def test_the_level_a_3d_heave_record_settles_at(tmp_path):

@@ -56,8 +56,8 @@ def case_build_dir(case_name: str, build: Path | None = None) -> Path:
 def run_name(level: str, time_step_divisor: int = 1, morphing: float = 1.0) -> str:
     """A run's folder name: its mesh level, followed by ``-dt<k>`` when its time steps are
     those of the level divided by k (the time-step study of ``floatfoam validate``) and by
-    ``-morph<f>`` when its six-DoF morphing distances are the case's times f (its morphing
-    study)."""
+    ``-morph<f>`` when its mesh motion is the case's spread by f (its study of the mesh
+    motion: :func:`floatfoam.foam.driver.scaled_morphing`)."""
     name = level if time_step_divisor == 1 else f"{level}-dt{time_step_divisor}"
     return name if morphing == 1 else f"{name}-morph{morphing:g}"
 
@@ -78,7 +78,7 @@ def run_dir(case_name: str, level: str, build: Path | None = None, *,
             time_step_divisor: int = 1, morphing: float = 1.0) -> Path:
     """The run directory of a case at a mesh level: ``<build>/<case>/<level>`` (and
     ``<level>-dt<k>`` with its time steps divided by k, ``<level>-morph<f>`` with its
-    morphing distances times f)."""
+    mesh motion spread by f)."""
     return case_build_dir(case_name, build) / run_name(level, time_step_divisor, morphing)
 
 

@@ -81,6 +81,9 @@ def _is_inert(value, inert) -> bool:
 
 MESH_POSES = ("release", "equilibrium")
 MESH_MOTIONS = ("auto", "laplacian", "distances")
+#: run.motion_diffusivity: the Laplacian's diffusivity in the distance d from the body, and
+#: its name in words
+MOTION_DIFFUSIVITIES = {"quadratic": "1/d²", "linear": "1/d"}
 
 
 def time_scheme_coefficient(scheme: str) -> float | None:
@@ -116,12 +119,17 @@ class RunSettings:
                                            doc="r: each body acceleration = r·new + "
                                            "(1 − r)·previous, in every coupling iteration")
     mesh_motion: str = _spec("auto", kind=str, doc="how the mesh follows the body: "
-                             "laplacian (displacementLaplacian, its diffusivity quadratic in "
-                             "the inverse distance from the body: no distance to set), "
+                             "laplacian (displacementLaplacian, its diffusivity "
+                             "run.motion_diffusivity: no distance to set), "
                              "distances (the six-DoF solver: rigid within inner_distance, "
-                             "fixed beyond outer_distance), or auto: laplacian for a release "
-                             "in heave alone on a 2D or wedge mesh made at the release, else "
-                             "distances")
+                             "fixed beyond outer_distance), or auto: laplacian on a 2D or "
+                             "wedge mesh made at the release unless the body is released to "
+                             "turn over, else distances")
+    motion_diffusivity: str = _spec("quadratic", kind=str, added=True,
+                                    doc="the Laplacian's diffusivity in the distance d from "
+                                    "the body: quadratic (1/d²) or linear (1/d, which spreads "
+                                    "the deformation further from the body); the distances "
+                                    "ignore it")
     inner_distance: float | None = _spec(None, minimum=0.0)
     outer_distance: float | None = _spec(None, minimum=0.0)
     solver: str | None = _spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
@@ -143,6 +151,9 @@ class RunSettings:
         if self.mesh_motion not in MESH_MOTIONS:
             raise InputError(f"run.mesh_motion = {self.mesh_motion!r}: valid is one of "
                              f"{', '.join(MESH_MOTIONS)}")
+        if self.motion_diffusivity not in MOTION_DIFFUSIVITIES:
+            raise InputError(f"run.motion_diffusivity = {self.motion_diffusivity!r}: valid is "
+                             f"one of {', '.join(MOTION_DIFFUSIVITIES)}")
         if self.mesh_motion == "laplacian" and self.mesh_pose != "release":
             raise InputError(f"run.mesh_motion = \"laplacian\" with run.mesh_pose = "
                              f"{self.mesh_pose!r}: valid is mesh_pose \"release\" (a mesh made "

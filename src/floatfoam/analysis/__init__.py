@@ -2,6 +2,7 @@
 
 * :mod:`~floatfoam.analysis.decay`: period and damping of a free-decay record (crossings,
   log decrements, :mod:`~floatfoam.analysis.decay_fit` damped-sinusoid fits with 95 % CIs);
+  :mod:`~floatfoam.analysis.released` the DoFs a record is analysed in, and its noise floor;
 * :mod:`~floatfoam.analysis.compare`: one table per case: memoir, theory, potential flow, CFD
   runs and the published reference;
 * :mod:`~floatfoam.analysis.plots`: decay figures;

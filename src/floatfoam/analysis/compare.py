@@ -11,9 +11,9 @@ trim → heave, roll, pitch) or lists a reference for:
 * **CFD <level>**: each ``build/<case>/<level>/motion.csv``, through :func:`analyse_decay`.
   The period is the damped period T_d of the record (what a decay test measures; the natural
   period T_n = T_d √(1 − ζ²) is in the note) with its 95 % interval;
-* **CFD fine ± U_num**: the fine level's value ± its numerical uncertainty (levels and time
-  step), with the Richardson extrapolation in the note, when ``floatfoam validate`` has
-  studied it;
+* **CFD fine ± U_num**: the fine level's value ± its numerical uncertainty (levels, time
+  step and mesh motion), with the Richardson extrapolation in the note, when ``floatfoam
+  validate`` has studied it;
 * **reference**: the measured value of the case's ``[reference]`` table (value ± uncertainty);
   without a period or damping ratio there, the decay fit of its measured record
   (``<dof>_record``) over the CFD's record length (:func:`record_fit`);

@@ -170,8 +170,8 @@ def plot_decay(path: str | Path, time, value, result: DecayResult, *,
 def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
     """Each quantity of a grid study (``floatfoam.analysis.validation``) against the cell size
     h/h_fine, one row per DoF: the three levels with the fine one's ± U_num, the level run with
-    its time step halved (at that level's h), the coarse one with its morphing distances
-    scaled, at h = 0 the Richardson-extrapolated value, and the case's measurement (a line and
+    its time step halved (at that level's h), the coarse one with its mesh motion varied, at
+    h = 0 the Richardson-extrapolated value, and the case's measurement (a line and
     its uncertainty's band) where its ``[reference]`` has one. One legend for the figure, below
     the panels, the measurements' sources its title: a legend in each panel, with a source
     a hundred characters long, squeezed the panels to slivers."""
@@ -187,7 +187,8 @@ def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
         for ax, (key, label, unit) in zip(panels, quantities, strict=False):
             if unit == "m or rad":  # a length or an angle, in code units
                 unit = "rad" if dof in dofs.NAMES and dofs.dof(dof).is_angle else "m"
-            source = _convergence_panel(ax, dof, entry, key, label, unit)
+            source = _convergence_panel(ax, dof, entry, key, label, unit,
+                                        (study.get("mesh_motion") or {}).get("variant"))
             if source and source not in sources:
                 sources.append(source)
         for ax in panels[len(quantities):]:
@@ -207,8 +208,10 @@ def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
     return path
 
 
-def _convergence_panel(ax, dof, entry, key, label, unit) -> str | None:
-    """One quantity's panel; returns its measurement's source (None without one)."""
+def _convergence_panel(ax, dof, entry, key, label, unit, variant=None) -> str | None:
+    """One quantity's panel; returns its measurement's source (None without one).
+    ``variant``: what the mesh-motion run varied, in words (a study written before it was
+    recorded scaled the distances)."""
     runs = entry["runs"]
     fine_cells = (runs.get("fine") or {}).get("cells")
     points = [((fine_cells / run["cells"]) ** (1 / run["dimension"]), run[key],
@@ -224,7 +227,7 @@ def _convergence_panel(ax, dof, entry, key, label, unit) -> str | None:
             ax.plot(h, v, "s", color="C3", mfc="none", label=f"{level}, time step / {k}")
         elif f != 1:
             ax.plot(h, v, "^", color="C2", mfc="none",
-                    label=f"{level}, morphing distances × {f:g}")
+                    label=f"{level}, {variant or f'morphing distances × {f:g}'}")
     q = entry["quantities"].get(key, {})
     grid = q.get("grid", {})
     if q.get("uncertainty") is not None and "values" in grid:

@@ -267,6 +267,7 @@ def _validation_section(doc: Document, case_name: str, study: dict | None, build
         TIME_ORDER,
         method,
         morphing_rows,
+        motion_heading,
         study_tables,
     )
 
@@ -279,9 +280,9 @@ def _validation_section(doc: Document, case_name: str, study: dict | None, build
         doc.table(GCI_HEADER, rows)
         morphing = morphing_rows(study, dof)
         if morphing:
-            doc.paragraph(f"{dof}, morphing distances × {study['morphing']:g}:")
+            doc.paragraph(f"{dof}, mesh motion: {motion_heading(study)}:")
             doc.table(MORPHING_HEADER, morphing)
-    doc.paragraph(method(study.get("time_step_level", "fine"), study.get("morphing"),
+    doc.paragraph(method(study.get("time_step_level", "fine"), study.get("mesh_motion"),
                          study.get("time_order", TIME_ORDER)), note=True)
     figure = layout.case_build_dir(case_name, build_dir) / "validation" / "convergence.png"
     if figure.is_file():
@@ -303,10 +304,13 @@ def _verification_summary(doc: Document, studies: list[dict]) -> None:
     doc.table(SUMMARY_HEADER, rows)
     doc.paragraph("From `floatfoam validate CASE` (each case's section has its tables and "
                   "figure). GCI_fine of the levels: Celik et al. (2008); GCI time: Roache's "
-                  "two-grid GCI of the halved level's own step; U_num = √(GCI_levels² + "
-                  "GCI_time²), the band around the fine level's value. ζ with distances × F: "
-                  "the coarse level's damping ratio with the six-DoF morphing distances scaled "
-                  "(`floatfoam validate --morphing F`), which neither GCI sees.", note=True)
+                  "two-grid GCI of the halved level's own step; U_motion: the whole relative "
+                  "change with the mesh motion varied at the coarse level (the six-DoF "
+                  "distances × F, or the Laplacian's diffusivity 1/d instead of 1/d²), which "
+                  "neither GCI sees; U_num = √(GCI_levels² + GCI_time² + U_motion²), the band "
+                  "around the fine level's value (without U_motion where the mesh motion was "
+                  "not studied: the case's section says so). ζ with the mesh motion varied: "
+                  "the coarse level's damping ratio's change.", note=True)
 
 
 def _periods_cell(theory: TheorySummary) -> str:

@@ -1,8 +1,8 @@
 """Verification of a case's CFD: grid and time-step convergence of its period and damping.
 
-``floatfoam validate CASE`` runs the case at the three mesh levels and once more at the medium
-level with its time steps halved (:func:`plan`; with ``--morphing F`` a fifth run); this module
-analyses them. For
+``floatfoam validate CASE`` runs the case at the three mesh levels, once more at the medium
+level with its time steps halved and once more at the coarse level with its mesh motion spread
+wider (:func:`plan`; ``--no-morphing`` leaves the last out); this module analyses them. For
 each DoF the release excites and each quantity (:data:`QUANTITIES`: the damped period and
 damping ratio of the whole record's fit, and the first cycles as a basin reduces its records,
 :func:`floatfoam.analysis.extrema.crossing_reduction` — the first period, twice the first
@@ -27,17 +27,22 @@ the record, :func:`floatfoam.analysis.compare.record_fit`) it gives
   medium level costs about a quarter of halving the fine one, which was 62 % of a whole study
   (cylinder_heave: 1705 of 2736 s wall on 2 ranks); ``--time-level fine`` halves the fine
   level itself;
-* the numerical uncertainty of the fine level's solution, U_num = √(GCI_levels² + GCI_time²)
-  (taken as independent, the root-sum-square of ITTC 7.5-03-01-01 (2017), the procedure for
-  uncertainty analysis in CFD verification and validation; conservative, since the levels
-  already hold part of the time error); where the levels' observed order is beyond twice the
+* the mesh-motion study: the coarse level once more with its mesh motion spread wider
+  (``--morphing F``, :data:`DEFAULT_MORPHING` by default;
+  :func:`floatfoam.foam.driver.scaled_morphing`): the six-DoF solver's distances times F, or
+  the Laplacian's diffusivity 1/d instead of 1/d². The mesh motion is the same on every level,
+  so neither GCI sees it; on the laboratory sphere the distances moved the damping more than
+  the levels did. U_motion is the whole relative change of each quantity between the two
+  runs: a change that does not shrink with the levels is not refined away, so it is taken
+  whole;
+* the numerical uncertainty of the fine level's solution, U_num = √(GCI_levels² + GCI_time² +
+  U_motion²) (taken as independent, the root-sum-square of ITTC 7.5-03-01-01 (2017), the
+  procedure for uncertainty analysis in CFD verification and validation; conservative, since
+  the levels already hold part of the time error); without the mesh-motion run
+  (``--no-morphing``, or it did not finish) U_num = √(GCI_levels² + GCI_time²) and the study
+  says the mesh motion was not studied. Where the levels' observed order is beyond twice the
   schemes' second order, their GCI is flagged and U_num takes the fine pair's two-grid GCI at
-  second order with F_s = 3 instead (:func:`levels_gci`);
-* with ``--morphing F``, the morphing study: the coarse level once more with its six-DoF
-  morphing distances times F (:func:`floatfoam.foam.driver.scaled_morphing`), and the change
-  of each quantity. The distances are the same on every level, so neither GCI sees them; on
-  the laboratory sphere they moved the damping more than the levels did. Not part of U_num:
-  it is a sensitivity to a modelling choice, not a discretisation error that shrinks.
+  second order with F_s = 3 instead (:func:`levels_gci`).
 
 Written to ``<build>/<case>/validation/``: ``validation.json`` (every number),
 ``validation.md`` (the table) and ``convergence.png`` (each quantity against the cell size,
@@ -74,16 +79,21 @@ TIME_STEP_LEVEL = "medium"
 TIME_STEP_LEVELS = ("medium", "fine")
 
 
-#: the level run once more with its morphing distances scaled: the cheapest, since the
-#: distances' effect is to be compared with the levels', not refined
+#: the level run once more with its mesh motion spread wider: the cheapest, since the mesh
+#: motion's effect is to be compared with the levels', not refined
 MORPHING_LEVEL = "coarse"
+#: the factor of the mesh-motion run (the distances × 1.5; any factor > 1 gives the Laplacian
+#: its 1/d): the one the cases' studies were made with (make validate MORPHING=1.5)
+DEFAULT_MORPHING = 1.5
+#: what the study says of a mesh motion it did not vary
+NOT_STUDIED = "mesh motion not studied"
 
 
 def plan(time_level: str = TIME_STEP_LEVEL,
-         morphing: float | None = None) -> tuple[tuple[str, int, float], ...]:
+         morphing: float | None = DEFAULT_MORPHING) -> tuple[tuple[str, int, float], ...]:
     """(mesh level, time-step divisor, morphing factor) of the study's runs, in the order they
-    are run: the three levels, the halved time steps, and the scaled morphing distances when
-    ``morphing`` is given."""
+    are run: the three levels, the halved time steps, and the mesh motion spread by
+    ``morphing`` (None: no such run, ``--no-morphing``)."""
     if time_level not in TIME_STEP_LEVELS:
         raise InputError(f"--time-level {time_level!r} is not a level whose time steps a "
                          "study halves; valid: " + ", ".join(TIME_STEP_LEVELS))
@@ -125,14 +135,14 @@ class RunValues:
     cells: int | None
     dimension: int
     divisor: int = 1  # of the level's time steps
-    morphing: float = 1.0  # factor of the morphing distances
+    morphing: float = 1.0  # factor of the mesh motion (driver.scaled_morphing)
     values: dict = field(default_factory=dict)  # key of QUANTITIES → value (None: failed)
     note: str = ""
     span: float | None = None  # s: the record's length from the release
 
 
 def study_runs(case, build: Path, time_level: str = TIME_STEP_LEVEL,
-               morphing: float | None = None) -> list[tuple[str, int, float, Path]]:
+               morphing: float | None = DEFAULT_MORPHING) -> list[tuple[str, int, float, Path]]:
     """(name, time-step divisor, morphing factor, run directory) of the study's runs that are
     finished. Raises InputError when one was run with other settings than ``case``'s (its case
     file and ``--set``): the study, its time order among them, is of one set of settings."""
@@ -150,9 +160,22 @@ def study_runs(case, build: Path, time_level: str = TIME_STEP_LEVEL,
     return out
 
 
+def study_morphing(case_name: str, build: Path, given: float | None = None, *,
+                   skip: bool = False) -> float | None:
+    """The factor of a study's mesh-motion run: None with ``--no-morphing`` (``skip``), else
+    ``given`` (``--morphing F``), else that of the study already written for the case when its
+    run is still finished (:func:`finished_morphing`), else :data:`DEFAULT_MORPHING`."""
+    if skip:
+        return None
+    if given is not None:
+        return given
+    written = finished_morphing(case_name, build)
+    return DEFAULT_MORPHING if written is None else written
+
+
 def finished_morphing(case_name: str, build: Path) -> float | None:
     """The morphing factor of the study already written for a case, when its run is still
-    finished there, or None: a study analysed again without ``--morphing`` keeps the morphing
+    finished there, or None: a study made again without ``--morphing`` keeps the mesh-motion
     run it had (not whichever ``floatfoam run --morphing`` finished last)."""
     path = layout.case_build_dir(case_name, build) / "validation" / STUDY_FILE
     try:
@@ -165,10 +188,15 @@ def finished_morphing(case_name: str, build: Path) -> float | None:
     return float(factor) if layout.is_finished(run) else None
 
 
+def _info(run: Path) -> dict:
+    """What the driver recorded of a run when it rendered it (empty when it did not)."""
+    info_file = run / layout.MARKERS / "info.json"
+    return json.loads(info_file.read_text()) if info_file.is_file() else {}
+
+
 def _run_values(name: str, divisor: int, run: Path, dof: str,
                 morphing: float = 1.0, settled: float | None = None) -> RunValues:
-    info_file = run / layout.MARKERS / "info.json"
-    info = json.loads(info_file.read_text()) if info_file.is_file() else {}
+    info = _info(run)
     dimension = 3 if str(info.get("mesh", "")).startswith("3d") else 2
     out = RunValues(name, info.get("cells"), dimension, divisor, morphing)
     try:
@@ -222,28 +250,40 @@ def time_study(runs: dict[str, RunValues], key: str, time_level: str = TIME_STEP
 
 
 def morphing_study(runs: dict[str, RunValues], key: str, factor: float | None) -> dict:
-    """The coarse level against the same with its morphing distances times ``factor``: both
-    values and the relative change (the scaled run's minus the case's, over the case's)."""
+    """The coarse level against the same with its mesh motion spread by ``factor``: both
+    values and the relative change (the varied run's minus the case's, over the case's)."""
     if factor is None:
-        return {"note": "not run (floatfoam validate --morphing F)"}
+        return {"note": f"{NOT_STUDIED} (floatfoam validate --no-morphing)"}
     base = runs.get(MORPHING_LEVEL)
-    scaled = runs.get(layout.run_name(MORPHING_LEVEL, 1, factor))
+    name = layout.run_name(MORPHING_LEVEL, 1, factor)
+    scaled = runs.get(name)
     if base is None or scaled is None:
-        return {"factor": factor, "note": f"needs the {MORPHING_LEVEL} level and its morphing "
-                f"distances × {factor:g} finished"}
+        return {"factor": factor, "note": f"{NOT_STUDIED}: needs {MORPHING_LEVEL} and {name} "
+                "finished"}
     a, b = base.values.get(key), scaled.values.get(key)
     if a is None or b is None or not (math.isfinite(a) and math.isfinite(b)) or a == 0:
         return {"factor": factor, "note": "a record could not be analysed"}
     return {"factor": factor, "values": [a, b], "relative_change": (b - a) / a}
 
 
-def numerical_uncertainty(grid, time) -> float | None:
-    """U_num = √(GCI_grid² + GCI_time²) of the fine level's solution, a fraction; None when
-    unknown. GCI_time is the halved level's own step (the coarser of the time pair, Roache's
-    GCI_coarse), taken for the fine level's (module docstring)."""
+def numerical_uncertainty(grid, time, motion: float | None = None) -> float | None:
+    """U_num = √(GCI_grid² + GCI_time² + U_motion²) of the fine level's solution, a fraction;
+    None when a GCI is unknown. GCI_time is the halved level's own step (the coarser of the
+    time pair, Roache's GCI_coarse), taken for the fine level's; U_motion (``motion``,
+    :func:`motion_uncertainty`) is left out when None: the mesh motion not studied (module
+    docstring)."""
     g = levels_gci(grid.as_dict()) if isinstance(grid, gci.GridConvergence) else None
     t = time.gci_coarse if isinstance(time, gci.TwoLevel) else None
-    return None if g is None or t is None else math.hypot(g, t)
+    if g is None or t is None:
+        return None
+    return math.hypot(g, t) if motion is None else math.hypot(g, t, motion)
+
+
+def motion_uncertainty(morphing: dict) -> float | None:
+    """U_motion of one quantity: the whole relative change with the mesh motion spread
+    (:func:`morphing_study`), unsigned; None when the mesh motion was not studied."""
+    change = morphing.get("relative_change")
+    return None if change is None else abs(change)
 
 
 def implausible_order(order: float | None) -> bool:
@@ -264,14 +304,13 @@ def levels_gci(grid: dict) -> float | None:
 
 
 def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_LEVEL,
-                  morphing: float | None = None) -> dict:
+                  morphing: float | None = DEFAULT_MORPHING) -> dict:
     """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict.
-    ``morphing`` None keeps the morphing run of the study already written, if it is still
-    finished (:func:`finished_morphing`)."""
+    ``morphing``: the factor of its mesh-motion run (:func:`study_morphing`), None for a study
+    without one."""
     from floatfoam.foam.driver import stamp_of
 
     build = Path(build or layout.build_dir())
-    morphing = morphing if morphing is not None else finished_morphing(case.name, build)
     found = study_runs(case, build, time_level, morphing)
     other = [level for level in TIME_STEP_LEVELS if level != time_level and layout.is_finished(
         layout.run_dir(case.name, level, build, time_step_divisor=TIME_STEP_DIVISOR))]
@@ -282,7 +321,8 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
     out = {"case": case.name, "runs": [name for name, _, _, _ in found],
            "stamps": {name: stamp_of(run) for name, _, _, run in found}, "dofs": {},
            "time_order": order, "time_step_divisor": TIME_STEP_DIVISOR,
-           "time_step_level": time_level, "morphing": morphing}
+           "time_step_level": time_level, "morphing": morphing,
+           "mesh_motion": mesh_motion_record(case, found, morphing)}
     for dof in excited_dofs(case, {}):
         runs = {name: _run_values(name, k, run, dof, f, settled_level(case, dof, run, theory))
                 for name, k, f, run in found}
@@ -293,15 +333,48 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
                  "quantities": {}}
         for key, _, _ in QUANTITIES:
             grid, time = grid_study(runs, key), time_study(runs, key, time_level, hint, order)
+            motion = morphing_study(runs, key, morphing)
+            u_motion = motion_uncertainty(motion)
             entry["quantities"][key] = {
                 "grid": grid.as_dict() if not isinstance(grid, str) else {"note": grid},
                 "time": time.as_dict() if not isinstance(time, str) else {"note": time},
-                "uncertainty": numerical_uncertainty(grid, time),
-                "morphing": morphing_study(runs, key, morphing)}
+                "motion_uncertainty": u_motion,
+                "uncertainty": numerical_uncertainty(grid, time, u_motion),
+                "morphing": motion}
         spans = [r.span for r in runs.values() if r.span is not None]
         entry["reference"] = measured(case, dof, max(spans, default=None))
         out["dofs"][dof] = entry
     return out
+
+
+def mesh_motion_record(case, found, morphing: float | None) -> dict:
+    """How the study's runs moved their mesh (:func:`floatfoam.foam.domain.mesh_motion` of
+    the case on its runs' mesh), and what its mesh-motion run varied: ``motion``
+    ("laplacian", "distances"; None without a run's record), ``diffusivity`` (the
+    Laplacian's, in words), ``factor``, ``run`` (its folder), ``variant`` (in words,
+    :func:`floatfoam.foam.driver.morphing_variant`), ``studied`` (its run finished: U_motion
+    joins U_num) and ``note``. ``found``: :func:`study_runs`."""
+    from floatfoam.foam.domain import mesh_motion
+    from floatfoam.foam.driver import morphing_variant
+    from floatfoam.settings import MOTION_DIFFUSIVITIES
+
+    kinds = [_info(run).get("mesh") for _, _, factor, run in found if factor == 1]
+    kind = next((k for k in kinds if k), None)
+    motion = None if kind is None else mesh_motion(case, kind)
+    record = {"motion": motion}
+    if motion == "laplacian":
+        record["diffusivity"] = MOTION_DIFFUSIVITIES[case.settings.run.motion_diffusivity]
+    if morphing is None:
+        return record | {"studied": False,
+                         "note": f"{NOT_STUDIED} (floatfoam validate --no-morphing)"}
+    name = layout.run_name(MORPHING_LEVEL, 1, morphing)
+    done = {run_name for run_name, _, _, _ in found}
+    studied = {MORPHING_LEVEL, name} <= done
+    variant = morphing_variant(case, motion, morphing) if motion else \
+        f"mesh motion spread × {morphing:g}"
+    return record | {"factor": morphing, "run": name, "variant": variant, "studied": studied,
+                     "note": "" if studied else f"{NOT_STUDIED}: needs {MORPHING_LEVEL} and {name} "
+                     "finished"}
 
 
 def measured(case, dof: str, window: float | None = None) -> dict:
@@ -344,11 +417,15 @@ def _pct(value) -> str:
 OLDER_STUDY = "not in this study (written before it was added: floatfoam validate --no-run)"
 RUNS_HEADER = ("run", "cells", *(label for _, label, _ in QUANTITIES), "note")
 GCI_HEADER = ("quantity", "convergence", "order p", "extrapolated", "e_a21",
-              "GCI_fine (levels)", "Δ with dt/2", "GCI (time)", "U_num", "measured")
-def method(time_level: str = TIME_STEP_LEVEL, morphing: float | None = None,
+              "GCI_fine (levels)", "Δ with dt/2", "GCI (time)", "U_motion", "U_num",
+              "measured")
+
+
+def method(time_level: str = TIME_STEP_LEVEL, motion: dict | None = None,
            order: float = TIME_ORDER) -> str:
-    """How the study's numbers are made, for the foot of its table (``order``: the time
-    scheme's, :func:`time_order`)."""
+    """How the study's numbers are made, for the foot of its table (``motion``: its
+    :func:`mesh_motion_record`, None for a study written before U_motion joined U_num;
+    ``order``: the time scheme's, :func:`time_order`)."""
     bound = ("" if time_level == "fine" else
              ", taken for the fine level's, whose steps are no longer (conservative if the "
              "time error's constant is about the same on both meshes)")
@@ -358,14 +435,29 @@ def method(time_level: str = TIME_STEP_LEVEL, morphing: float | None = None,
             f"space-time GCI. Time alone: the {time_level} level against its time steps "
             f"halved, Roache's two-grid GCI of the {time_level} level's own step (F_s = 3, "
             f"{'first' if order == 1 else 'second' if order == 2 else f'{order:g}'} order)"
-            f"{bound}. U_num = √(GCI_levels² + GCI_time²), the band around the "
-            "fine level's value; where the levels' order p is beyond twice the schemes' "
-            f"{FORMAL_ORDER:g}, GCI_levels is the fine pair's at order {FORMAL_ORDER:g} with "
-            "F_s = 3 (Roache)." + ("" if morphing is None else
-            f" Morphing: the {MORPHING_LEVEL} level with the six-DoF morphing distances × "
-            f"{morphing:g}, which are the same on every level so that neither GCI sees them; "
-            "a change larger than the levels' GCI says the morphing, not the mesh, limits "
-            "that quantity (not in U_num)."))
+            f"{bound}. {_motion_method(motion)} Where the levels' order p is beyond twice the "
+            f"schemes' {FORMAL_ORDER:g}, GCI_levels is the fine pair's at order "
+            f"{FORMAL_ORDER:g} with F_s = 3 (Roache).")
+
+
+def _motion_method(motion: dict | None) -> str:
+    """The mesh motion's part of :func:`method`: how the runs moved their mesh, U_motion and
+    U_num."""
+    if motion is None:
+        return ("U_num = √(GCI_levels² + GCI_time²), the band around the fine level's value "
+                "(a study written before the mesh motion joined U_num).")
+    how = {"laplacian": f"the Laplacian (diffusivity {motion.get('diffusivity', '1/d²')})",
+           "distances": "the six-DoF solver's distances"}.get(motion.get("motion"),
+                                                              "a motion no run recorded")
+    runs = f"The runs' mesh follows the body by {how}."
+    if not motion.get("studied"):
+        return (f"{runs} U_num = √(GCI_levels² + GCI_time²), the band around the fine "
+                f"level's value, without an error of the mesh motion: {motion['note']}.")
+    return (f"{runs} Mesh motion: the {MORPHING_LEVEL} level against the same with "
+            f"{motion['variant']} ({motion['run']}); the mesh motion is the same on every "
+            "level, so neither GCI sees it, and U_motion is the whole relative change, which "
+            "does not shrink with the levels. U_num = √(GCI_levels² + GCI_time² + U_motion²), "
+            "the band around the fine level's value.")
 
 
 def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]]]]:
@@ -385,7 +477,8 @@ def study_tables(study: dict) -> list[tuple[str, list[list[str]], list[list[str]
                          _num(g.get("extrapolated")), _pct(g.get("relative_error")),
                          _pct(g.get("gci_fine")),
                          _pct(t.get("relative_error")) if "values" in t else t.get("note", ""),
-                         _pct(t.get("gci_coarse")), _pct(q["uncertainty"]),
+                         _pct(t.get("gci_coarse")), _pct(q.get("motion_uncertainty")),
+                         _pct(q["uncertainty"]),
                          _measured_cell(entry.get("reference", {}).get(key))])
         out.append((dof, runs, rows))
     return out
@@ -405,13 +498,35 @@ def _convergence(grid: dict, brief: bool = False) -> str:
     return kind
 
 
-MORPHING_HEADER = ("quantity", MORPHING_LEVEL, "distances × F", "change", "GCI_fine (levels)")
+MORPHING_HEADER = ("quantity", MORPHING_LEVEL, "mesh motion varied", "change",
+                   "GCI_fine (levels)")
+
+
+def motion_variant(study: dict) -> str | None:
+    """What the study's mesh-motion run varied, in words ("distances × 1.5", "diffusivity 1/d
+    instead of 1/d²"); None without one. A study written before the study recorded it had
+    scaled the distances: the Laplacian had no such run then."""
+    factor = study.get("morphing")
+    if factor is None:
+        return None
+    return (study.get("mesh_motion") or {}).get("variant") or f"distances × {factor:g}"
+
+
+def motion_heading(study: dict) -> str:
+    """The line above a DoF's mesh-motion table (:func:`morphing_rows`)."""
+    record = study.get("mesh_motion")
+    if record is None:
+        return (f"the {MORPHING_LEVEL} level with {motion_variant(study)} (a study written "
+                "before U_motion joined U_num)")
+    return (f"the {MORPHING_LEVEL} level with {record['variant']} ({record['run']}); "
+            "U_motion = |change|")
 
 
 def morphing_rows(study: dict, dof: str) -> list[list[str]]:
-    """Rows of the morphing study's table (MORPHING_HEADER) of one DoF; none when not run."""
-    factor = study.get("morphing")
-    if factor is None:
+    """Rows of the mesh-motion study's table (MORPHING_HEADER) of one DoF; none when it was
+    not studied (:func:`method` says why)."""
+    record = study.get("mesh_motion")
+    if study.get("morphing") is None or (record is not None and not record.get("studied")):
         return []
     rows = []
     for key, label, _ in QUANTITIES:
@@ -431,7 +546,7 @@ def _signed_pct(value) -> str:
 
 SUMMARY_HEADER = ("case", "DoF", "runs", "T_d fine (s)", "levels", "GCI_fine levels",
                   "dt/2 at", "GCI time", "U_num of T_d", "ζ fine", "U_num of ζ",
-                  "ζ with distances × F")
+                  "ζ with the mesh motion varied")
 
 
 def summary_row(study: dict, dof: str) -> list[str]:
@@ -451,7 +566,7 @@ def summary_row(study: dict, dof: str) -> list[str]:
 def _morphing_cell(study: dict, morphing: dict) -> str:
     if "values" not in morphing:
         return "—"
-    return f"{_signed_pct(morphing['relative_change'])} (× {study['morphing']:g})"
+    return f"{_signed_pct(morphing['relative_change'])} ({motion_variant(study)})"
 
 
 def study_markdown(study: dict) -> str:
@@ -465,11 +580,11 @@ def study_markdown(study: dict) -> str:
         lines += [f"## {dof}", "", *table(RUNS_HEADER, runs), *table(GCI_HEADER, rows)]
         morphing = morphing_rows(study, dof)
         if morphing:
-            lines += [f"Morphing distances × {study['morphing']:g} at the {MORPHING_LEVEL} "
-                      "level:", "", *table(MORPHING_HEADER, morphing)]
+            lines += [f"Mesh motion: {motion_heading(study)}:", "",
+                      *table(MORPHING_HEADER, morphing)]
     return "\n".join([*lines, method(study.get("time_step_level", "fine"),
-                                     study.get("morphing"), study.get("time_order", TIME_ORDER)),
-                       ""])
+                                     study.get("mesh_motion"),
+                                     study.get("time_order", TIME_ORDER)), ""])
 
 
 def write_study(study: dict, out_dir: Path) -> list[Path]:

@@ -18,7 +18,7 @@ from floatfoam.errors import ComputationError, InputError
 from floatfoam.interrupts import SignalInterruptError, signals_interrupt
 
 COMMANDS = ["theory", "gz", "mesh", "run", "batch", "analyse", "report", "potential",
-            "decay_model", "validate", "pictures"]
+            "decay_model", "validate", "pictures", "export"]
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -27,6 +27,17 @@ class OneLineParser(argparse.ArgumentParser):
 
     def error(self, message: str):
         self.exit(2, f"{self.prog}: error: {message}; see `{self.prog} --help`\n")
+
+
+class VersionAction(argparse.Action):
+    """``--version``: print ``floatfoam <version>`` and exit 0 (the version looked up only
+    when asked for: :func:`floatfoam.package_version`)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        from floatfoam import package_version
+
+        print(f"floatfoam {package_version()}")
+        parser.exit(0)
 
 
 # errors of a path the user gave or chose (the build folder, --out, --plot): bad input, exit 2
@@ -58,6 +69,8 @@ def build_parser() -> argparse.ArgumentParser:
         description="Oscillation and stability of floating bodies: theory, potential flow, CFD.",
     )
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
+    parser.add_argument("--version", action=VersionAction, nargs=0,
+                        help="print floatfoam's version and exit")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name in COMMANDS:
         importlib.import_module(f"floatfoam.cli.{name}").register(sub)

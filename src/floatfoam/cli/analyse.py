@@ -1,12 +1,18 @@
 """``floatfoam analyse RUN_DIR_OR_CSV``: period and damping of one free-decay record.
 
-With ``--json`` it prints one object (keys in :func:`floatfoam.analysis.decay.decay_dict`;
-confidence intervals are 95 % [lo, hi] pairs); otherwise a readable table.
+The DoF is ``--dof``'s, else the DoF(s) the run released, else, for a CSV that is no run's,
+the one that moves most (:func:`floatfoam.analysis.released.choose`, which also refuses a DoF
+that does not move above the noise). With ``--json`` it prints one object per DoF (keys in
+:func:`floatfoam.analysis.decay.decay_dict`, with ``dof`` and ``dof_from``, why that DoF;
+confidence intervals are 95 % [lo, hi] pairs), a list of them for a run that released
+several; otherwise a readable table per DoF.
 """
 
 from __future__ import annotations
 
 import math
+import sys
+from pathlib import Path
 
 from floatfoam import dofs
 from floatfoam.cli.common import dump_json
@@ -16,8 +22,11 @@ def add_arguments(parser) -> None:
     """The analyse command's arguments (shared with postprocess/analyse.py)."""
     parser.add_argument("source", metavar="RUN_DIR_OR_CSV",
                         help="a run directory holding motion.csv, or a motion CSV")
-    parser.add_argument("--dof", choices=list(dofs.NAMES), default="heave",
-                        help="degree of freedom to analyse (default: heave)")
+    parser.add_argument("--dof", choices=list(dofs.NAMES), default=None,
+                        help="degree of freedom to analyse (default: the DoF(s) the run "
+                             "released, from its .floatfoam/info.json; for a CSV that is no "
+                             "run's, the one that moves most relative to its scale, 1 rad or "
+                             "the body's size)")
     parser.add_argument("--equilibrium", metavar="VALUE",
                         help="level the motion decays to, in file units (m, deg), or 'tail'; "
                              "default: fitted")
@@ -26,8 +35,12 @@ def add_arguments(parser) -> None:
                         help="fit linear + quadratic damping (integrates the ODE; slower)")
     parser.add_argument("--start", type=float, metavar="T",
                         help="ignore the record before time T (s)")
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.add_argument("--plot", metavar="PNG", help="write the decay figure to PNG")
+    parser.add_argument("--json", action="store_true",
+                        help="print one JSON object (a list of one per DoF for a run that "
+                             "released several)")
+    parser.add_argument("--plot", metavar="PNG",
+                        help="write the decay figure to PNG (several DoFs: PNG's name with "
+                             "-<dof> before its suffix)")
 
 
 def register(sub) -> None:
@@ -52,23 +65,58 @@ def _equilibrium(text: str | None, scale: float):
 
 
 def run(args) -> int:
-    from floatfoam.analysis.decay import analyse_decay, decay_dict
-    from floatfoam.motion import dof_series, file_unit, motion_path, read_motion
+    from floatfoam.analysis.released import choose
+    from floatfoam.errors import InputError
+    from floatfoam.motion import motion_path, read_motion
 
     path = motion_path(args.source)
-    scale, unit = file_unit(args.dof)
-    time, value = dof_series(read_motion(path), args.dof)
+    motion = read_motion(path)
+    choice = choose(path, motion, args.dof)
+    if choice.released is not None and args.dof and args.dof not in choice.released:
+        print(f"note: {path.parent} released {', '.join(choice.released)}, not {args.dof}: "
+              f"its {args.dof} follows the released motion and is no free decay",
+              file=sys.stderr)
+    several = len(choice.dofs) > 1
+    if several and args.equilibrium not in (None, "tail"):
+        raise InputError(f"--equilibrium {args.equilibrium}: a level in one DoF's units, and "
+                         f"the run released {', '.join(choice.dofs)}; valid is --dof with it, "
+                         "or 'tail'")
+    results = [_analyse(args, path, motion, dof, choice.reason,
+                        _plot_path(args.plot, dof) if several else args.plot)
+               for dof in choice.dofs]
+    if args.json:
+        print(dump_json(results if several else results[0]))
+    else:
+        print("\n\n".join(format_result(data) for data in results))
+    return 0
+
+
+def _plot_path(plot: str | None, dof: str) -> str | None:
+    """The figure of one of several DoFs: ``--plot``'s name with ``-<dof>`` before its suffix."""
+    if plot is None:
+        return None
+    given = Path(plot)
+    return str(given.with_name(f"{given.stem}-{dof}{given.suffix}"))
+
+
+def _analyse(args, path, motion: dict, dof: str, reason: str, plot: str | None) -> dict:
+    """The decay analysis of one DoF of the record, as :func:`decay_dict` plus its source."""
+    from floatfoam.analysis.decay import analyse_decay, decay_dict
+    from floatfoam.motion import dof_series, file_unit
+
+    scale, unit = file_unit(dof)
+    time, value = dof_series(motion, dof)
     result = analyse_decay(time, value, equilibrium=_equilibrium(args.equilibrium, scale),
                            drift=args.drift, quadratic=args.quadratic, t_start=args.start,
-                           units=(scale, unit), name=dofs.dof(args.dof).column)
-    data = {"source": str(path), **decay_dict(result, scale=scale, unit=unit, dof=args.dof)}
-    if args.plot:
+                           units=(scale, unit), name=dofs.dof(dof).column)
+    data = {"source": str(path), **decay_dict(result, scale=scale, unit=unit, dof=dof),
+            "dof_from": reason}
+    if plot:
         from floatfoam.analysis.plots import plot_decay
 
-        data["plot"] = str(plot_decay(args.plot, time, value, result, scale=scale, unit=unit,
-                                      title=f"{path}: {args.dof} decay"))
-    print(dump_json(data) if args.json else format_result(data))
-    return 0
+        data["plot"] = str(plot_decay(plot, time, value, result, scale=scale, unit=unit,
+                                      title=f"{path}: {dof} decay"))
+    return data
 
 
 def _ci(pair) -> str:
@@ -80,7 +128,8 @@ def format_result(d: dict) -> str:
     from floatfoam.analysis.decay import log_decrement_damping
 
     u = d["unit"]
-    lines = [f"{d['source']}: {d['dof']} ({u}), model {d['model']}",
+    chosen = "" if d.get("dof_from", "--dof") == "--dof" else f" ({d['dof_from']})"
+    lines = [f"{d['source']}: {d['dof']} ({u}){chosen}, model {d['model']}",
              f"mean level {d['equilibrium']:.6g} {u} ({d['equilibrium_source']}), drift "
              f"{d['drift']:.3g} {u}/s; initial amplitude {d['amplitude']:.4g} {u}",
              f"usable: t = {d['t_first']:g} … {d['t_usable']:.4g} s, {d['n_cycles']:.3g} cycles; "

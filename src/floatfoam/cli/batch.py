@@ -15,6 +15,7 @@ import sys
 from pathlib import Path
 
 from floatfoam import layout
+from floatfoam.cli.common import add_np_argument
 from floatfoam.errors import InputError
 from floatfoam.layout import LEVELS
 
@@ -26,7 +27,7 @@ def register(sub) -> None:
     p.add_argument("cases", nargs="+", metavar="CASE", help="folder names under cases/ or paths")
     p.add_argument("--levels", nargs="+", default=["coarse"], metavar="LEVEL",
                    help=f"mesh levels ({', '.join(LEVELS)}; default coarse)")
-    p.add_argument("--np", type=int, default=1, help="MPI ranks per task (default 1)")
+    add_np_argument(p, "MPI ranks per task")
     p.add_argument("--hostfile", default=None, metavar="FILE",
                    help="Open MPI hostfile for every task (default: Slurm's allocation)")
     p.add_argument("--time", default="24:00:00", metavar="D-HH:MM:SS",

@@ -5,7 +5,7 @@ They go to ``<build>/<case>/pictures/<level>/`` (floatfoam.analysis.pictures.cas
 
 from __future__ import annotations
 
-from floatfoam.cli.common import add_case_arguments
+from floatfoam.cli.common import add_case_arguments, add_level_argument
 from floatfoam.errors import InputError
 from floatfoam.layout import LEVELS
 
@@ -15,7 +15,7 @@ COLOURS = ("velocity", "vorticity")
 def register(sub) -> None:
     p = sub.add_parser("pictures", help="pictures of the flow of a finished CFD run (PNG, GIF)")
     add_case_arguments(p)
-    p.add_argument("--level", default="coarse", help=f"mesh level: {', '.join(LEVELS)}")
+    add_level_argument(p)
     p.add_argument("--colour", default="velocity",
                    help=f"colour of the water: {' or '.join(COLOURS)} (default velocity)")
     p.add_argument("--times", type=float, nargs="+", default=None, metavar="T",

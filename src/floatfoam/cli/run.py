@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from floatfoam.cli.common import add_case_arguments
+from floatfoam.cli.common import add_case_arguments, add_level_argument, add_np_argument
 from floatfoam.errors import InputError
 from floatfoam.interrupts import SignalInterruptError
 from floatfoam.layout import LEVELS
@@ -16,8 +16,8 @@ EXIT_LOCKED = 75  # EX_TEMPFAIL (sysexits.h): another run holds the directory, t
 def register(sub) -> None:
     p = sub.add_parser("run", help="run the CFD free decay of a case (OpenFOAM v1912)")
     add_case_arguments(p)
-    p.add_argument("--level", default="coarse", help=f"mesh level: {', '.join(LEVELS)}")
-    p.add_argument("--np", type=int, default=1, help="MPI ranks (default 1: serial)")
+    add_level_argument(p)
+    add_np_argument(p)
     p.add_argument("--hostfile", type=Path, default=None, metavar="FILE",
                    help="Open MPI hostfile for the ranks (default: this machine)")
     p.add_argument("--force", action="store_true",
@@ -26,8 +26,10 @@ def register(sub) -> None:
                    help="divide the level's time-step limits (largest step, Courant numbers) "
                         "by K: a time-step study, run in <level>-dt<K> (default 1)")
     p.add_argument("--morphing", type=float, default=1.0, metavar="F",
-                   help="multiply the six-DoF morphing distances (run.inner_distance and "
-                        "run.outer_distance, or their defaults) by F: a morphing study, run in "
+                   help="spread the mesh motion wider (F > 1) or narrower: the six-DoF "
+                        "morphing distances (run.inner_distance and run.outer_distance, or "
+                        "their defaults) × F, or for the Laplacian (F > 1 only) its "
+                        "diffusivity 1/d instead of 1/d²: a study of the mesh motion, run in "
                         "<level>-morph<F> (default 1)")
     p.set_defaults(func=run)
 
@@ -75,9 +77,9 @@ def _say(line: str) -> None:
 
 
 def print_summary(case, result, eq) -> None:
-    """The motion series of each DoF the release displaces, its period and damping ratio
-    beside the theory's period (a DoF the release leaves alone is not analysed: its record is
-    noise)."""
+    """For each DoF the release displaces, its turning points (:func:`turning_rows`), then its
+    period and damping ratio beside the theory's period (a DoF the release leaves alone is not
+    analysed: its record is noise)."""
     from floatfoam.dofs import released
     from floatfoam.hydrostatics.theory import theory_summary
     from floatfoam.motion import read_motion
@@ -89,15 +91,60 @@ def print_summary(case, result, eq) -> None:
         return
     print(f"motion series: {result.motion_csv}")
     motion = read_motion(result.motion_csv)
-    dofs = released(case.release) or released({"heave": 1.0})
-    columns = [(d, d.column) for d in dofs]
-    t = motion["time"]
-    header = f"{'time (s)':>9}" + "".join(f" {f'{d.name} ({d.unit})':>14}" for d, _ in columns)
-    print(header)
-    for i in range(0, len(t), max(1, len(t) // 12)):
-        print(f"{t[i]:>9.3f}" + "".join(f" {motion[c][i]:>14.6g}" for _, c in columns))
-    for d, _ in columns:
+    for d in released(case.release) or released({"heave": 1.0}):
+        print("\n".join(turning_rows(motion["time"], motion[d.column], f"{d.name} ({d.unit})")))
         _dof_summary(d, motion, theory)
+
+
+# A turning point counts once the record has turned back from it by more than 1 % of its range:
+# the six-DoF state's jitter from step to step and a record's settled end make none, while a
+# lightly damped decay (ζ ≈ 0.03) keeps swings over 1 % for some 50 turning points, more than
+# the table shows.
+TURN_SWING = 0.01  # of the record's range (max − min)
+TABLE_TURNS = 13  # turning points shown: with the first and last sample, 15 rows
+
+
+def turning_points(t, x, *, swing: float = TURN_SWING) -> list[tuple[float, float]]:
+    """The turning points (time, value) of a record: its maxima and minima, in order, each the
+    vertex of the parabola through the extreme sample and its two neighbours (as
+    :func:`floatfoam.analysis.extrema.crossing_reduction` refines its extrema).
+
+    An extreme sample counts once the record has turned back from it by more than ``swing`` ×
+    the record's range; the first sample (the release) is not one.
+    """
+    import numpy as np
+
+    from floatfoam.analysis.extrema import _parabola_peak
+
+    t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float)
+    least = swing * float(np.ptp(x)) if x.size else 0.0
+    turns, k, heading = [], 0, 0.0  # heading +1: rising to a maximum, −1: falling to a minimum
+    for i in range(1, x.size):
+        if heading == 0.0:
+            if abs(x[i] - x[0]) > least:
+                heading, k = float(np.sign(x[i] - x[0])), i
+        elif heading * (x[i] - x[k]) > 0:
+            k = i
+        elif heading * (x[k] - x[i]) > least:
+            turns.append(k)
+            heading, k = -heading, i
+    return [_parabola_peak(t, x, k) for k in turns]
+
+
+def turning_rows(t, x, quantity: str) -> list[str]:
+    """The run's closing table of one DoF: its first sample, its first :data:`TABLE_TURNS`
+    turning points (:func:`turning_points`) and its last sample; ``quantity`` heads the value
+    column (e.g. "roll (deg)", in the unit of ``x``)."""
+    turns = turning_points(t, x)
+    rows = [(t[0], x[0], "  first sample"), *((a, b, "") for a, b in turns[:TABLE_TURNS]),
+            (t[-1], x[-1], "  last sample")]
+    lines = [f"turning points of {quantity}, each the vertex of the parabola through three "
+             "samples:", f"{'time (s)':>9} {quantity:>14}"]
+    lines += [f"{a:>9.4f} {b:>14.6g}{note}" for a, b, note in rows]
+    if len(turns) > TABLE_TURNS:
+        lines.insert(-1, f"{'…':>9} {len(turns) - TABLE_TURNS} more turning points, the last "
+                         f"at {turns[-1][0]:.4f} s")
+    return lines
 
 
 def _still_water(case, run_dir: Path) -> None:

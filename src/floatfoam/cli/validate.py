@@ -1,8 +1,9 @@
 """``floatfoam validate CASE``: the grid and time-step convergence study of a case's CFD.
 
-Runs (or resumes, or reuses when finished) the coarse, medium and fine levels and the medium
-level (``--time-level fine``: the fine one) with its time steps halved — and with
-``--morphing F`` the coarse level with its six-DoF morphing distances times F — then writes
+Runs (or resumes, or reuses when finished) the coarse, medium and fine levels, the medium
+level (``--time-level fine``: the fine one) with its time steps halved and the coarse level
+with its mesh motion spread wider (``--morphing F``: the six-DoF distances × F, or the
+Laplacian's diffusivity 1/d; ``--no-morphing``: not run), then writes
 ``<build>/<case>/validation/`` (validation.json, validation.md, convergence.png:
 :mod:`floatfoam.analysis.validation`).
 """
@@ -13,7 +14,7 @@ import sys
 import time
 from pathlib import Path
 
-from floatfoam.cli.common import add_case_arguments
+from floatfoam.cli.common import add_case_arguments, add_np_argument
 from floatfoam.errors import InputError
 
 
@@ -21,15 +22,21 @@ def register(sub) -> None:
     p = sub.add_parser("validate", help="grid and time-step convergence (GCI, Celik et al. "
                        "2008) of a case's period and damping")
     add_case_arguments(p)
-    p.add_argument("--np", type=int, default=2, help="MPI ranks of every run (default 2)")
+    add_np_argument(p, "MPI ranks of every run")
     p.add_argument("--time-level", default="medium", metavar="LEVEL",
                    help="the level run once more with its time steps halved: medium "
                    "(default: taken for the fine level's time error) or fine (its own, for "
                    "about four times that run's cost)")
-    p.add_argument("--morphing", type=float, default=None, metavar="F",
-                   help="also run the coarse level with its six-DoF morphing distances times "
-                   "F (1.5, say), which no level changes, and report how much each quantity "
-                   "moves with them")
+    motion = p.add_mutually_exclusive_group()
+    motion.add_argument("--morphing", type=float, default=None, metavar="F",
+                        help="the coarse level's mesh-motion run, which no level changes: its "
+                        "six-DoF distances × F, or for the Laplacian (F > 1) its diffusivity "
+                        "1/d instead of 1/d²; each quantity's change is U_motion, in U_num "
+                        "(default: the study's own factor when its run is finished, else "
+                        "1.5)")
+    motion.add_argument("--no-morphing", action="store_true",
+                        help="no mesh-motion run: U_num from the levels and the time step "
+                        "alone")
     p.add_argument("--no-run", action="store_true",
                    help="analyse the finished runs only (made with this command's case file "
                    "and --set: others are refused); run nothing")
@@ -41,7 +48,13 @@ def run(args) -> int:
     study of what finished is written), 2 bad input, 75 another run holds a run directory,
     128 + signal when interrupted (the same command resumes)."""
     from floatfoam import layout
-    from floatfoam.analysis.validation import plan, study_markdown, validate_case, write_study
+    from floatfoam.analysis.validation import (
+        plan,
+        study_markdown,
+        study_morphing,
+        validate_case,
+        write_study,
+    )
     from floatfoam.case import load_case
     from floatfoam.cli.run import EXIT_LOCKED
     from floatfoam.foam.driver import check_ranks, check_run, run_case
@@ -51,8 +64,9 @@ def run(args) -> int:
 
     case = load_case(args.case, args.overrides)
     check_ranks(args.np, None)
-    runs = plan(args.time_level, args.morphing)
     build = layout.build_dir()
+    morphing = study_morphing(case.name, build, args.morphing, skip=args.no_morphing)
+    runs = plan(args.time_level, morphing)
     failed = []
     if not args.no_run:
         eq = equilibrium(case)
@@ -81,7 +95,7 @@ def run(args) -> int:
                 f"{time.monotonic() - start:.0f} s wall"
             print(f"[validate {case.name}] {name}: {done.info.get('cells')} cells, {what}",
                   file=sys.stderr)
-    result = validate_case(case, build, args.time_level, args.morphing)
+    result = validate_case(case, build, args.time_level, morphing)
     if not result["runs"] and failed:
         return 1
     if not result["runs"]:

@@ -4,7 +4,10 @@ Steps (each leaves a marker in ``<run>/.floatfoam/``, so an interrupted run resu
 stopped; the solver restarts from its last written time):
 
     render → gmshToFoam, patchTypes, checkMesh (or blockMesh) → fields → setAlphaField →
-    [decomposePar] → interFoam → finished
+    [decomposePar] → interFoam → [reconstructPar] → finished
+
+The run folder opens in ParaView from the start, by its ``<case>.foam`` file; a parallel run's
+fields are gathered into it at the end (:mod:`floatfoam.foam.paraview`).
 
 A mesh made at equilibrium (``[run] mesh_pose``, :func:`to_release_pose`) instead runs
 fields → [decomposePar] → releasePose (the solver for no step, the points moved) →
@@ -20,7 +23,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import os
 import shutil
 import sys
 from dataclasses import dataclass
@@ -29,8 +31,9 @@ from pathlib import Path
 from floatfoam import layout, settings
 from floatfoam.case import Case
 from floatfoam.errors import InputError
-from floatfoam.foam import domain, runner
+from floatfoam.foam import domain, paraview, runner
 from floatfoam.foam.motionlog import rebuild_motion
+from floatfoam.foam.ranks import check_ranks
 from floatfoam.foam.render import end_time_of, release_state, render
 from floatfoam.foam.runlock import RunLock, lock_path
 from floatfoam.foam.timedirs import latest_time, set_aside_incomplete
@@ -111,7 +114,7 @@ def stamp_of(run_dir: Path) -> str | None:
 def stamped_with(case: Case, level: str, run_dir: Path, divisor: int = 1,
                  morphing: float = 1.0) -> bool | None:
     """Whether the run directory's settings stamp is that of ``case`` run at ``level`` with
-    its time steps divided by ``divisor`` and its morphing distances times ``morphing`` (the
+    its time steps divided by ``divisor`` and its mesh motion scaled by ``morphing`` (the
     case as the command gives it: a study's run stamps its own digest); None when it has no
     stamp (the driver writes it before anything else: a folder without one was not made by a
     run)."""
@@ -184,10 +187,10 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     default). ``equilibrium`` is the case's (solved here when not given); ``hostfile`` goes to
     mpirun. ``time_step_divisor`` k > 1 divides the level's time-step limits (largest step,
     Courant numbers) by k, in ``<level>-dt<k>``: a time-step study; ``morphing`` f ≠ 1
-    multiplies its six-DoF morphing distances by f, in ``<level>-morph<f>``: a morphing study
-    (:func:`scaled_morphing`). Everything is checked
-    before anything is written; the run holds the run directory's lock
-    (:mod:`floatfoam.foam.runlock`) from start to end."""
+    spreads its mesh motion wider or narrower by f (:func:`scaled_morphing`: the six-DoF
+    distances × f, or the Laplacian's diffusivity 1/d), in ``<level>-morph<f>``: a study of
+    the mesh motion. Everything is checked before anything is written; the run holds the run
+    directory's lock (:mod:`floatfoam.foam.runlock`) from start to end."""
     check_ranks(np_, hostfile)
     check_morphing(morphing)
     command_case = case  # what the run directory's stamp is of (settings_digest)
@@ -296,31 +299,83 @@ def check_morphing(factor: float, *, study: bool = False) -> None:
              and not (study and factor == 1))
     if not valid:
         raise InputError(f"--morphing {factor!r}: valid is a factor > 0 of at most 6 "
-                         "significant digits" + (" other than 1" if study else "") +
-                         " (1.5: both morphing distances one and a half times the case's)")
+                         "significant digits" + (" other than 1 (--no-morphing: no mesh-motion "
+                                                 "run)" if study else "") +
+                         " (1.5: both morphing distances one and a half times the case's, or "
+                         "the Laplacian's diffusivity 1/d instead of 1/d²)")
 
 
 def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool = True) -> Case:
-    """The case with its six-DoF morphing distances — the mesh moves rigidly with the body
-    within run.inner_distance and is fixed beyond run.outer_distance, or their defaults from
-    the body's size (:mod:`floatfoam.foam.domain`) — both multiplied by ``factor`` > 0.
+    """The case with its mesh motion (:func:`floatfoam.foam.domain.mesh_motion`) spread wider
+    or narrower by ``factor`` > 0 (:func:`morphing_variant` says how, in words):
 
-    A morphing study: the damping ratio of the laboratory sphere's 0.3 D drop rose from 0.066
-    to 0.109 as the distances were widened from the defaults (0.09 and 0.48 m) to 0.2 and
-    1.2 m (cases/lab_sphere/README.md); a study of mesh levels cannot see that, since the
-    distances are the same on every level."""
+    * the six-DoF solver's distances — the mesh moves rigidly with the body within
+      run.inner_distance and is fixed beyond run.outer_distance, or their defaults from the
+      body and the tank (:mod:`floatfoam.foam.domain`) — both multiplied by ``factor``, or
+      divided by it where the defaults already reach as far as the tank allows
+      (:func:`distance_factor`);
+    * the Laplacian, for ``factor`` > 1: run.motion_diffusivity "linear", whose 1/d spreads
+      the deformation further from the body than the default 1/d². A factor < 1, or a case
+      already at 1/d, is refused: no narrower nor wider Laplacian is offered.
+
+    A study of the mesh motion, which a study of mesh levels cannot see since the motion is
+    the same on every level: the damping ratio of the laboratory sphere's 0.3 D drop rose from
+    0.066 to 0.109 as the distances were widened from 0.09 and 0.48 m to 0.2 and 1.2 m
+    (cases/lab_sphere/README.md)."""
     check_morphing(factor)
     if factor == 1:
         return case
     from floatfoam.case import with_overrides
 
     mesh = domain.plan(case, level, pose, local=local)
-    if mesh.motion != "distances":
-        raise InputError(f"--morphing {factor:g} scales the six-DoF solver's distances; this "
-                         f"run's mesh follows the body by the {mesh.motion} motion, which has "
-                         "none: valid is --morphing 1, or --set run.mesh_motion='\"distances\"'")
-    return with_overrides(case, [f"run.inner_distance={mesh.inner * factor!r}",
-                                 f"run.outer_distance={mesh.outer * factor!r}"])
+    if mesh.motion == "distances":
+        scale = distance_factor(case, factor)
+        return with_overrides(case, [f"run.inner_distance={mesh.inner * scale!r}",
+                                     f"run.outer_distance={mesh.outer * scale!r}"])
+    wider = _wider_diffusivity(case, factor)
+    return with_overrides(case, [f'run.motion_diffusivity="{wider}"'])
+
+
+def distance_factor(case: Case, factor: float) -> float:
+    """What the six-DoF distances are multiplied by in a run of mesh-motion factor ``factor``:
+    ``factor`` itself, but 1 / ``factor`` for a widening (``factor`` > 1) of the defaults,
+    whose outer distance already reaches 0.9 × the room to the tank's nearest held wall
+    (:func:`floatfoam.foam.domain._distances`): widened, the zone would squeeze the walls'
+    first cells; narrowed as much, it says as much of the distances' effect."""
+    return 1.0 / factor if factor > 1 and case.settings.run.outer_distance is None else factor
+
+
+#: the diffusivity a Laplacian run of a mesh-motion study takes (:func:`scaled_morphing`)
+WIDER_DIFFUSIVITY = {"quadratic": "linear"}
+
+
+def _wider_diffusivity(case: Case, factor: float) -> str:
+    """run.motion_diffusivity of the Laplacian spread wider (``factor`` > 1); InputError for
+    ``factor`` < 1 or a case whose diffusivity has none wider."""
+    now = case.settings.run.motion_diffusivity
+    if factor < 1:
+        raise InputError(f"--morphing {factor:g} narrows the mesh motion; this run's mesh "
+                         "follows the body by the Laplacian, for which no diffusivity narrower "
+                         "than 1/d² is offered: valid is a factor > 1 (diffusivity 1/d), or "
+                         "--set run.mesh_motion='\"distances\"'")
+    if now not in WIDER_DIFFUSIVITY:
+        raise InputError(f"--morphing {factor:g} spreads the Laplacian's deformation wider; "
+                         f"run.motion_diffusivity = {now!r} (1/d) is the widest offered: valid "
+                         "is --no-morphing, or --set run.motion_diffusivity='\"quadratic\"'")
+    return WIDER_DIFFUSIVITY[now]
+
+
+def morphing_variant(case: Case, motion: str, factor: float) -> str:
+    """What :func:`scaled_morphing` changes in a run whose mesh follows the body by
+    ``motion`` ("laplacian" or "distances"), in words: "distances × 1.5", "diffusivity 1/d
+    instead of 1/d²"."""
+    if motion == "distances":
+        scale = distance_factor(case, factor)
+        return f"distances × {factor:g}" if scale == factor else \
+            f"distances ÷ {factor:g} (their defaults reach as far as the tank allows)"
+    now = case.settings.run.motion_diffusivity
+    words = settings.MOTION_DIFFUSIVITIES
+    return f"diffusivity {words[WIDER_DIFFUSIVITY.get(now, now)]} instead of {words[now]}"
 
 
 def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
@@ -335,10 +390,13 @@ def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
         return RunResult(run_dir, motion, json.loads(info_file.read_text()), False, True)
     if not layout.step_done(run_dir, "render"):
         info = render(case, level, run_dir, state, mesh, np_=np_)
+        # what the run released and the body's size (m): `floatfoam analyse`'s default DoFs
+        info |= {"release": dict(case.release), "body_size": case.body.size}
         info = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in info.items()}
         info_file.write_text(json.dumps(info, indent=2))
         layout.mark_done(run_dir, "render")
     info = json.loads(info_file.read_text())
+    paraview.write_foam_file(run_dir, case.name)
     if resumed:
         print(f"[{label}] resuming the run in {run_dir}")
         for moved in set_aside_incomplete(run_dir, moving=not case.settings.run.static_body):
@@ -375,6 +433,7 @@ def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
                           np_=np_, hostfile=hostfile, motion_csv=motion, limits=limits,
                           label=label, log_name="interFoam", keep_fds=(lock.fd,),
                           reference=reference)
+    paraview.reconstruct(run_dir)  # a parallel run's times, for ParaView's default reader
     layout.mark_done(run_dir, layout.FINISHED)
     return RunResult(run_dir, motion, info, resumed)
 
@@ -423,22 +482,3 @@ def mesh_line(label: str, info: dict, check: dict) -> str:
     if info.get("immersed_error") is not None:
         line += f"; body patch immersed volume {info['immersed_error']:+.2e} of the exact body's"
     return line
-
-
-def check_ranks(np_: int, hostfile: Path | None) -> None:
-    """--np and --hostfile: a whole number ≥ 1, an existing file; more ranks than this
-    machine's cores (without a hostfile) is allowed but said."""
-    if isinstance(np_, bool) or not isinstance(np_, int) or np_ < 1:
-        raise InputError(f"--np {np_}: valid is a whole number ≥ 1")
-    if hostfile is not None:
-        if not Path(hostfile).is_file():
-            raise InputError(f"--hostfile {hostfile}: no such file; valid is an Open MPI "
-                             "hostfile (one host per line, e.g. 'node1 slots=16')")
-        return
-    cores = os.cpu_count() or 1
-    if np_ > cores:
-        # measured here: 3 ranks on 2 cores took 458 s for what 2 ranks ran in 4 s (Open
-        # MPI's ranks busy-wait for each other when they share a core)
-        print(f"warning: --np {np_} is more than the {cores} cores of this machine: the ranks "
-              f"will share them and run far slower than --np {cores}; give --hostfile to use "
-              "other machines", file=sys.stderr)

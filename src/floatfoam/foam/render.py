@@ -219,7 +219,8 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | Non
     equilibrium (``state["mesh_offset"]``) gets G there as the initial centre of mass.
 
     The mesh follows the body as ``mesh.motion`` says (:func:`floatfoam.foam.domain.mesh_motion`):
-    the six-DoF motion solver with its distances, or ``displacementLaplacian`` whose body
+    the six-DoF motion solver with its distances, or ``displacementLaplacian`` (its
+    diffusivity :data:`LAPLACIAN_DIFFUSIVITY` of ``run.motion_diffusivity``) whose body
     patch carries the same six-DoF dictionary as its point displacement condition
     (``sixDoFRigidBodyDisplacement``, v1912's src/sixDoFRigidBodyMotion/pointPatchFields):
     then the body's condition is returned, for the caller to write into pointDisplacement
@@ -260,7 +261,8 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | Non
             "dynamicFvMesh": "dynamicMotionSolverFvMesh",
             "motionSolverLibs": ['"libfvMotionSolvers.so"', '"libsixDoFRigidBodyMotion.so"'],
             "motionSolver": "displacementLaplacian",
-            "displacementLaplacianCoeffs": {"diffusivity": LAPLACIAN_DIFFUSIVITY},
+            "displacementLaplacianCoeffs": {
+                "diffusivity": LAPLACIAN_DIFFUSIVITY[case.settings.run.motion_diffusivity]},
         })
         body = {k: v for k, v in coeffs.items()
                 if k not in ("patches", "innerDistance", "outerDistance")}
@@ -274,6 +276,8 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | Non
     return None
 
 
-# the displacement's diffusivity 1/d², d the distance from the body: the cells near the body
-# move nearly with it, the far ones little (measured against 1/d: docs/morphing.md)
-LAPLACIAN_DIFFUSIVITY = ("quadratic", "inverseDistance", ["body"])
+# the displacement's diffusivity by run.motion_diffusivity, d the distance from the body:
+# 1/d² (the default) moves the cells near the body nearly with it and the far ones little; 1/d
+# spreads the deformation further out (measured against each other: docs/morphing.md)
+LAPLACIAN_DIFFUSIVITY = {"quadratic": ("quadratic", "inverseDistance", ["body"]),
+                         "linear": ("inverseDistance", ["body"])}

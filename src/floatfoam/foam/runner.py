@@ -1,6 +1,6 @@
 """Run OpenFOAM applications in a run directory: one log per application, serial or MPI,
-a progress line, a motion CSV written as the solver goes, early divergence detection, resume
-after an interruption.
+a progress line (its ETA from the recent step rate), a motion CSV written as the solver goes,
+early divergence detection, resume after an interruption.
 
 Written by hand rather than with foamlib's ``FoamCase.run`` (which the rendering could use):
 the solver must run in a watched session that dies with floatfoam
@@ -16,6 +16,7 @@ import re
 import shutil
 import sys
 import time
+from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -210,7 +211,7 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
         child = processes.Child(_mpi(argv, np_, hostfile), cwd=run_dir, stdout=fh,
                                 env=foam_env(), keep_fds=keep_fds)
     last_report = -math.inf
-    t0 = None
+    rate = StepRate()
     stall = Stall(limits)
     try:
         with open(log) as reader:
@@ -225,7 +226,6 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                     if finished:
                         new_steps += watcher.close()
                     if new_steps:
-                        t0 = new_steps[0].time if t0 is None else t0
                         if writer:
                             writer.append(new_steps)
                         problem = diverged(new_steps, limits)
@@ -241,7 +241,10 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                     now = time.monotonic()
                     if watcher.steps and (now - last_report >= progress_every or finished):
                         last_report = now
-                        print(progress_line(label, watcher.steps[-1], t0, end_time, now - start),
+                        step = watcher.steps[-1]
+                        rate.add(now, step.time)
+                        print(progress_line(label, step, len(watcher.steps), end_time,
+                                            now - start, rate.eta(end_time)),
                               file=sys.stderr, flush=True)
                     if finished:
                         break
@@ -302,18 +305,59 @@ def diverged(steps: list[Step], limits: Limits) -> str | None:
     return None
 
 
-def progress_line(label: str, step: Step, t0: float | None, end_time: float,
-                  wall: float) -> str:
-    """``[label] t = 1.234/3.2 s (38.6 %)  wall 2:31  ETA 4:02  Co 0.41``."""
-    t0 = step.time if t0 is None else t0
+# The ETA's step rate is measured over the last minute of wall time: the start-up's steps (a
+# first Δt far below the Courant limit's, grown step by step) leave it after a minute instead of
+# weighing on it to the end, while a minute's steps still average out the swing of Δt with the
+# body's speed (twice a period).
+RATE_WINDOW = 60.0  # s of wall time
+
+
+class StepRate:
+    """Simulated seconds per wall second over the last ``window`` seconds of wall time.
+
+    Fed one (wall, simulated time) sample per progress line; the rate is the slope between the
+    newest sample and the oldest one still needed to span the window (before the run has
+    lasted a window: the first sample).
+    """
+
+    def __init__(self, window: float = RATE_WINDOW):
+        self.window = window
+        self.samples: deque[tuple[float, float]] = deque()
+
+    def add(self, wall: float, sim_time: float) -> None:
+        self.samples.append((wall, sim_time))
+        while len(self.samples) > 2 and self.samples[1][0] <= wall - self.window:
+            self.samples.popleft()
+
+    def rate(self) -> float:
+        """Simulated s per wall s; NaN before two samples or while the time stands still."""
+        if len(self.samples) < 2:
+            return math.nan
+        (w0, t0), (w1, t1) = self.samples[0], self.samples[-1]
+        return (t1 - t0) / (w1 - w0) if w1 > w0 and t1 > t0 else math.nan
+
+    def eta(self, end_time: float) -> float:
+        """Wall seconds to ``end_time`` at the recent rate (NaN when there is none yet)."""
+        rate = self.rate()
+        if not math.isfinite(rate):
+            return math.nan
+        return max(end_time - self.samples[-1][1], 0.0) / rate
+
+
+def progress_line(label: str, step: Step, count: int, end_time: float, wall: float,
+                  eta: float) -> str:
+    """``[label] t = 1.234/3.2 s (38.6 %)  step 412  Δt 2.5 ms  Co 0.41  wall 2:31  ETA 4:02``.
+
+    ``count`` is the steps this invocation ran (a resumed run counts from its restart),
+    ``wall`` the wall seconds since it started, ``eta`` the wall seconds left
+    (:meth:`StepRate.eta`; NaN prints ``--:--``). Δt and Co are left out when the log has none.
+    """
     fraction = min(max(step.time / end_time, 0.0), 1.0) if end_time > 0 else 1.0
-    done_here = step.time - t0
-    # No ETA before 1 % of the run: the first steps (start-up, tiny Δt) say nothing yet.
-    enough = done_here > 0.01 * (end_time - t0)
-    eta = (end_time - step.time) * wall / done_here if enough else math.nan
     return (f"[{label}] t = {step.time:.4g}/{end_time:g} s ({100 * fraction:.1f} %)  "
-            f"wall {_clock(wall)}  ETA {_clock(eta)}"
-            + (f"  Co {step.courant_max:.3g}" if step.courant_max is not None else ""))
+            f"step {count}"
+            + (f"  Δt {1e3 * step.delta_t:.3g} ms" if step.delta_t is not None else "")
+            + (f"  Co {step.courant_max:.3g}" if step.courant_max is not None else "")
+            + f"  wall {_clock(wall)}  ETA {_clock(eta)}")
 
 
 def _clock(seconds: float) -> str:

@@ -1,0 +1,47 @@
+"""How many MPI ranks a run takes: the default when --np is not given, and the check of a
+given --np and --hostfile. Light on purpose: every command's parser asks for the default."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+from floatfoam.errors import InputError
+
+#: the most ranks a run takes by default: every measurement in this project (the README's and
+#: docs/' tables) was made on 2 ranks, where the coarse 2D meshes of 4–13 k cells run 1.1–1.7 ×
+#: faster than on one and the 3D ones 1.2–3.8 ×; more is a choice to make with --np, measured
+#: first (`make bench-cfd`). One default on every machine of 2 cores or more also keeps a run
+#: resumable there: its stamp holds its --np.
+DEFAULT_RANKS_CAP = 2
+
+
+def default_ranks() -> int:
+    """The ranks of a run when --np is not given (``run``, ``validate``, ``batch`` and make):
+    the cores this process may use (a taskset or a container's CPU set counts), at most
+    :data:`DEFAULT_RANKS_CAP`."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # no sched_getaffinity (not Linux)
+        cores = os.cpu_count() or 1
+    return max(1, min(cores, DEFAULT_RANKS_CAP))
+
+
+def check_ranks(np_: int, hostfile: Path | None) -> None:
+    """--np and --hostfile: a whole number ≥ 1, an existing file; more ranks than this
+    machine's cores (without a hostfile) is allowed but said."""
+    if isinstance(np_, bool) or not isinstance(np_, int) or np_ < 1:
+        raise InputError(f"--np {np_}: valid is a whole number ≥ 1")
+    if hostfile is not None:
+        if not Path(hostfile).is_file():
+            raise InputError(f"--hostfile {hostfile}: no such file; valid is an Open MPI "
+                             "hostfile (one host per line, e.g. 'node1 slots=16')")
+        return
+    cores = os.cpu_count() or 1
+    if np_ > cores:
+        # measured here: 3 ranks on 2 cores took 458 s for what 2 ranks ran in 4 s (Open
+        # MPI's ranks busy-wait for each other when they share a core)
+        print(f"warning: --np {np_} is more than the {cores} cores of this machine: the ranks "
+              f"will share them and run far slower than --np {cores}; give --hostfile to use "
+              "other machines", file=sys.stderr)
