@@ -528,6 +528,18 @@ def test_a_changed_default_makes_a_finished_run_foreign(tmp_path):
     assert settings_digest(case, "medium", divisor=2) != settings_digest(case, "medium")
 
 
+def test_a_changed_mesh_motion_rule_makes_a_finished_run_foreign(monkeypatch):
+    """The stamp holds the mesh motion the defaults resolve to (the Laplacian or the six-DoF
+    distances, and their values): a run made on the distances is not one of a case that now
+    resolves to the Laplacian, though its case file and settings are the same."""
+    from floatfoam.foam import domain
+
+    case = load_case("box_bilge")  # 2D roll: the Laplacian
+    now = settings_digest(case, "coarse")
+    monkeypatch.setattr(domain, "mesh_motion", lambda case, kind: "distances")
+    assert settings_digest(case, "coarse") != now
+
+
 def test_a_study_checks_its_runs_before_the_first(tmp_path):
     """A fine run of other settings is refused before the coarse one has started (no hours of
     CFD lost to a refusal at the third run): one line, exit 2, nothing written."""

@@ -53,7 +53,8 @@ class RunResult:
 def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float = 1.0) -> str:
     """Hash of what a run depends on: the case file, the values it resolves to with the
     defaults (a changed default, as run.acceleration_relaxation's on 2026-12-02, makes every
-    run made before another run's), the level, the time-step divisor and morphing factor of a
+    run made before another run's) and the mesh motion they resolve to
+    (:func:`_resolved_motion`), the level, the time-step divisor and morphing factor of a
     study's run, the shared dictionaries and the solver binary. Not the case's words ([case]
     title, description, and the name of the case it extends: its tables are in) nor its
     [reference] measurements: adding a measurement must not make a finished run look
@@ -72,7 +73,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     resolved = {"settings": stamp, "release": case.release,
                 "mass": case.mass, "cog": case.cog, "gyradius": case.gyradius, "rho": case.rho,
                 "nu": case.nu, "g": case.g, "depth": case.depth, "rho_air": case.rho_air,
-                "nu_air": case.nu_air}
+                "nu_air": case.nu_air, "mesh_motion": _resolved_motion(case, level)}
     run = {"case": raw, "resolved": resolved, "level": level, "divisor": divisor,
            "morphing": morphing}
     digest = hashlib.sha256(json.dumps(run, sort_keys=True, default=_plain).encode())
@@ -81,6 +82,22 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
             digest.update(path.read_bytes())
     digest.update(str(solver_path(case, check=False)).encode())
     return digest.hexdigest()[:16]
+
+
+def _resolved_motion(case: Case, level: str) -> list | None:
+    """How the run's mesh follows the body once "auto" and the distances' defaults are
+    resolved (:func:`floatfoam.foam.domain.mesh_motion`, ``_distances``): ["laplacian"], or
+    ["distances", inner, outer]; a rule that resolves them otherwise makes the runs made
+    before it foreign. None when the case has no mesh plan (its input is refused there)."""
+    from floatfoam.hydrostatics.theory import equilibrium
+
+    try:
+        mesh = domain.plan(case, level, release_state(case, equilibrium(case))["pose"])
+    except InputError:
+        return None
+    if mesh.motion != "distances":
+        return [mesh.motion]
+    return [mesh.motion, float(f"{mesh.inner:.9g}"), float(f"{mesh.outer:.9g}")]
 
 
 def _stamped_keys(values: dict, stamped: dict) -> dict:
