@@ -1,18 +1,23 @@
 """The run driver without a solver run: log parsing (on a real interFoam log excerpt), the
-motion CSV on resume, divergence checks, refuse/resume/force, and bad [run] input."""
+motion CSV on resume, divergence checks, refuse/resume/force, a run continued to a later
+run.end_time (on synthetic run folders), and bad [run] input."""
 
+import json
+import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
+from foamlib import FoamFile
 
 from floatfoam import layout
 from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.errors import InputError
-from floatfoam.foam import driver, runner
+from floatfoam.foam import driver, runner, timedirs
 from floatfoam.foam.logwatch import LogWatcher, Step
 from floatfoam.foam.motionlog import MotionWriter
+from floatfoam.foam.paraview import RECONSTRUCT
 
 EXCERPT = Path(__file__).parent / "data" / "log.interFoam.excerpt"
 
@@ -162,7 +167,8 @@ def test_prepare_refuses_resumes_and_forces(tmp_path, case):
         driver.prepare(case, "coarse", 2, False, tmp_path)  # other --np
     layout.mark_done(run_dir, "finished")
     assert driver.prepare(case, "coarse", 1, False, tmp_path)[2]  # finished: reuse, no run
-    other = load_case("cylinder_heave", ['run.solver="/usr/bin/interFoam"', "run.end_time=2.0"])
+    other = load_case("cylinder_heave", ['run.solver="/usr/bin/interFoam"',
+                                         "run.write_interval=0.2"])
     with pytest.raises(InputError, match="finished run"):
         driver.prepare(other, "coarse", 1, False, tmp_path)
     driver.prepare(other, "coarse", 1, True, tmp_path)  # --force moves the old run aside
@@ -170,6 +176,130 @@ def test_prepare_refuses_resumes_and_forces(tmp_path, case):
     moved = sorted(p.name for p in (tmp_path / "cylinder_heave").iterdir())
     assert len(moved) == 3 and moved[0] == "coarse"
     assert all(name.startswith("coarse.old-") for name in moved[1:])
+
+
+SOLVER = 'run.solver="/usr/bin/interFoam"'
+
+
+def heave(end_time: float, interval: float = 0.05):
+    """cylinder_heave run to ``end_time`` s, writing every ``interval`` s (nothing is run)."""
+    return load_case("cylinder_heave", [SOLVER, f"run.end_time={end_time}",
+                                        f"run.write_interval={interval}"])
+
+
+def synthetic_run(build: Path, end_time: float, interval: float, *, finished: bool = True,
+                  times=None) -> Path:
+    """A run folder of cylinder_heave at the coarse level as the driver leaves it: stamped,
+    controlDict and info.json of ``end_time``, complete time folders every ``interval`` up to
+    it (or ``times``), and when ``finished`` its reconstructPar and finished markers. Nothing
+    in it came from a solver."""
+    run_dir, _, _ = driver.prepare(heave(end_time, interval), "coarse", 1, False, build)
+    (run_dir / "system").mkdir()
+    shutil.copy(layout.COMMON_DIR / "system" / "controlDict", run_dir / "system")
+    control = FoamFile(run_dir / "system" / "controlDict")
+    control["endTime"] = end_time
+    control["writeInterval"] = interval
+    (run_dir / layout.MARKERS / "info.json").write_text(json.dumps({"end_time": end_time,
+                                                                   "cells": 11280}))
+    steps = round(end_time / interval)
+    for t in times or [round(interval * k, 9) for k in range(1, steps + 1)]:
+        for name in ("U", "uniform/time", "polyMesh/points"):  # complete: timedirs' rule
+            path = run_dir / f"{t:g}" / name
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_bytes(b"FoamFile {}\n" + timedirs.FOOTER + b"\n")
+    if finished:
+        layout.mark_done(run_dir, RECONSTRUCT)
+        layout.mark_done(run_dir, layout.FINISHED)
+    return run_dir
+
+
+def control_times(run_dir: Path) -> tuple[float, float]:
+    control = FoamFile(run_dir / "system" / "controlDict")
+    return control["endTime"], control["writeInterval"]
+
+
+def info_end_time(run_dir: Path) -> float:
+    return json.loads((run_dir / layout.MARKERS / "info.json").read_text())["end_time"]
+
+
+def test_the_stamp_leaves_out_how_far_the_run_goes():
+    """run.end_time says how far a run goes, not what it computes: out of the stamp (the case
+    file's 3.2 s, or any other); run.write_interval sets the written times the adjustable time
+    step lands on: in it."""
+    digest = driver.settings_digest(heave(0.1), "coarse")
+    assert driver.settings_digest(heave(0.2), "coarse") == digest
+    own = load_case("cylinder_heave", [SOLVER, "run.write_interval=0.05"])  # 3.2 s
+    assert driver.settings_digest(own, "coarse") == digest
+    assert driver.settings_digest(heave(0.2, 0.1), "coarse") != digest
+
+
+def test_a_finished_run_continues_to_a_later_end_time(tmp_path, capsys):
+    """Issue 39: a finished run asked for a longer run.end_time is resumed, not refused: its
+    finished and reconstructPar markers are cleared, controlDict and info.json go to the new
+    end time, and every written time stays for the solver to restart from the last."""
+    run_dir = synthetic_run(tmp_path, 0.1, 0.05)
+    assert driver.existing_run(heave(0.2), "coarse", 1, tmp_path) == (run_dir, False)
+    assert layout.is_finished(run_dir)  # existing_run writes nothing
+    assert driver.prepare(heave(0.2), "coarse", 1, False, tmp_path) == (run_dir, True, False)
+    assert not layout.is_finished(run_dir) and not layout.step_done(run_dir, RECONSTRUCT)
+    assert control_times(run_dir) == (0.2, 0.05) and info_end_time(run_dir) == 0.2
+    assert [t for t, _ in timedirs.time_folders(run_dir)] == [0.05, 0.1]
+    assert "it continues to 0.2 s" in capsys.readouterr().err
+
+
+def test_the_write_interval_of_a_continued_run_divides_the_time_left(tmp_path):
+    """Continued from 0.1 s to 0.25 s with run.write_interval 0.1 s: OpenFOAM counts write
+    times from the time it restarts from, so it writes every 0.075 s and the last falls on
+    0.25 s (as a new run's interval divides its end time)."""
+    run_dir = synthetic_run(tmp_path, 0.1, 0.1)
+    assert driver.prepare(heave(0.25, 0.1), "coarse", 1, False, tmp_path)[1]
+    end, interval = control_times(run_dir)
+    assert end == 0.25 and interval == pytest.approx(0.075)
+
+
+def test_a_run_finished_past_the_end_time_asked_is_kept(tmp_path, capsys):
+    """A shorter run.end_time than a finished run's: it is reused as it is (nothing cut, one
+    line saying its record is longer than asked and how to run it anew)."""
+    run_dir = synthetic_run(tmp_path, 0.1, 0.05)
+    capsys.readouterr()
+    assert driver.prepare(heave(0.05), "coarse", 1, False, tmp_path) == (run_dir, False, True)
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "kept as it is" in err and "motion.csv" in err
+    assert "longer than asked" in err and "--force" in err
+    assert layout.is_finished(run_dir) and layout.step_done(run_dir, RECONSTRUCT)
+    assert control_times(run_dir) == (0.1, 0.05) and info_end_time(run_dir) == 0.1
+    assert [t for t, _ in timedirs.time_folders(run_dir)] == [0.05, 0.1]
+
+
+def test_an_unfinished_run_goes_to_the_end_time_asked_past_its_written_times(tmp_path):
+    """An unfinished run (written to 0.1 s of 0.3 s) resumes to whatever end time lies past
+    its written times; one asked for no further than what it has written is refused, in one
+    line, before anything is written (its folder as it was)."""
+    run_dir = synthetic_run(tmp_path, 0.3, 0.05, finished=False, times=[0.05, 0.1])
+    assert driver.prepare(heave(0.3), "coarse", 1, False, tmp_path) == (run_dir, True, False)
+    assert control_times(run_dir) == (0.3, 0.05)  # its own end time: as it was
+    assert driver.prepare(heave(0.2), "coarse", 1, False, tmp_path) == (run_dir, True, False)
+    assert control_times(run_dir) == (0.2, 0.05) and info_end_time(run_dir) == 0.2
+    before = sorted(p.relative_to(run_dir) for p in run_dir.rglob("*"))
+    for asked in (0.1, 0.05):
+        with pytest.raises(InputError, match=r"already written to 0.1 s.*valid: run.end_time "
+                                             r"> 0.1 s.*--force"):
+            driver.existing_run(heave(asked), "coarse", 1, tmp_path)
+        with pytest.raises(InputError, match="already written"):
+            driver.prepare(heave(asked), "coarse", 1, False, tmp_path)
+    assert sorted(p.relative_to(run_dir) for p in run_dir.rglob("*")) == before
+    assert control_times(run_dir) == (0.2, 0.05)
+
+
+def test_a_refused_end_time_exits_2_with_one_line(tmp_path, monkeypatch, capsys):
+    run_dir = synthetic_run(tmp_path, 0.3, 0.05, finished=False, times=[0.05, 0.1])
+    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path))
+    before = sorted(p.relative_to(run_dir) for p in run_dir.rglob("*"))
+    assert main(["run", "cylinder_heave", "--np", "1", "--set", SOLVER, "--set",
+                 "run.end_time=0.1", "--set", "run.write_interval=0.05"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "run.end_time = 0.1 s" in err and "valid" in err
+    assert sorted(p.relative_to(run_dir) for p in run_dir.rglob("*")) == before
 
 
 @pytest.mark.parametrize("setting, key", [("run.end_time=-1", "run.end_time"),

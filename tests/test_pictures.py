@@ -1,7 +1,8 @@
 """Pictures of the flow (floatfoam.analysis.pictures, ``floatfoam pictures``).
 
 Refusals and the choice of times run on a one-cell case written here by hand (no OpenFOAM
-utility runs in the fast tests); one test (marker ``openfoam``) renders a short real run.
+utility runs in the fast tests), the arrows on a synthetic grid; one test (marker
+``openfoam``) renders a short real run.
 """
 
 import json
@@ -12,7 +13,15 @@ import sys
 import numpy as np
 import pytest
 
-from floatfoam.analysis.flowview import default_times, nearest, open_run
+from floatfoam.analysis.flowview import (
+    View,
+    arrows,
+    default_times,
+    nearest,
+    offscreen_pyvista,
+    open_run,
+)
+from floatfoam.analysis.pictures import scale_length
 from floatfoam.errors import InputError
 from floatfoam.motion import write_motion
 
@@ -108,14 +117,41 @@ def test_run_without_pictures_is_refused(tmp_path, kind):
     assert files_under(tmp_path) == before
 
 
-def test_default_times_are_release_first_trough_and_last(tmp_path):
-    """The record z = 0.01 cos(πt/0.2) has its first trough at 0.2 s."""
+def test_default_times_are_after_the_release_first_trough_and_last(tmp_path):
+    """The record z = 0.01 cos(πt/0.2) has its first trough at 0.2 s; the first written time
+    after the release is 0.1 s (at t = 0 the water is at rest: its speed, one colour)."""
     run = open_run(fake_run(tmp_path))
     assert run.dof == "heave" and list(run.times) == pytest.approx([0.0, 0.1, 0.2, 0.3])
-    assert default_times(run) == pytest.approx([0.0, 0.2, 0.3])
+    assert default_times(run) == pytest.approx([0.1, 0.2, 0.3])
     assert nearest(run, 0.26) == pytest.approx(0.3)
     with pytest.raises(InputError, match="0 … 0.3 s"):
         nearest(run, 0.31)
+
+
+@pytest.mark.parametrize("width, length", [(1.5, 0.2), (0.45, 0.05), (3.0, 0.5), (1.0, 0.2),
+                                           (0.1, 0.02)])
+def test_the_scale_bar_is_a_round_length_near_a_fifth_of_the_view(width, length):
+    assert scale_length(width) == pytest.approx(length)
+
+
+def test_arrows_stay_inside_the_view_box():
+    """A jet three times faster than the rest (the 95th percentile sets an arrow's length) near
+    the box's bottom: its arrows, several grid steps long, are cut at the box and do not reach
+    the colour bar's margin below it."""
+    pv = offscreen_pyvista()
+    box = (0.0, 1.0, -0.75, 0.75, -0.41, 0.26)
+    view = View("slab", (1.0, 0.0, 0.0), (0.5, 0.0, 0.0), box, 0.3, 0.1)
+    grid = pv.ImageData(dimensions=(3, 80, 60), spacing=(0.5, 0.023, 0.015),
+                        origin=(0.0, -0.9, -0.5)).cast_to_unstructured_grid()
+    y, z = grid.points[:, 1], grid.points[:, 2]
+    grid["alpha.water"] = (z < 0.0).astype(float)
+    jet = np.exp(-((y - 0.5) ** 2 + (z + 0.36) ** 2) / 0.01)
+    grid["U"] = np.column_stack([0 * y, np.sin(10 * z), -3.0 * jet])
+    glyphs, speed = arrows(grid, view)
+    assert glyphs.n_points and 0.0 < speed < 3.0
+    bounds = np.reshape(glyphs.bounds, (3, 2))
+    assert np.all(bounds[1:, 0] >= np.reshape(box, (3, 2))[1:, 0] - 1e-6)
+    assert np.all(bounds[1:, 1] <= np.reshape(box, (3, 2))[1:, 1] + 1e-6)
 
 
 @pytest.mark.openfoam
@@ -134,7 +170,7 @@ def test_pictures_of_a_short_sphere_run(tmp_path):
     run = open_run(result.run_dir)
     written = run.times
     assert written == pytest.approx([0.0, 0.04, 0.08, 0.12], abs=1e-6)
-    flows = len(default_times(run))  # 2: no trough yet in 0.12 s (at ~0.31 s), the last time
+    flows = len(default_times(run))  # 2: 0.04 s and the last (no trough yet: at ~0.31 s)
     pairs = case_pictures("sphere", "coarse", tmp_path)  # ~3 s (its cost: the note, not here)
     pngs = [p for p, _ in pairs if p.suffix == ".png"]
     assert len(pngs) == flows + 1 and all(alt for _, alt in pairs)  # + the near-body one

@@ -2,13 +2,15 @@
 
 The motion.csv files here are synthetic free decays written by the test, not OpenFOAM output
 (a committed real-output test belongs with the CFD runs). The first tests replace the case
-loader and the theory with stand-ins, so they check the report's assembly only; the last one
-runs the real loader and theory on a small case file.
+loader and the theory with stand-ins, so they check the report's assembly only; the last ones
+run the real loader and theory on a small case file, and the real potential flow and Cummins'
+model on it (a 2D section: its panel method takes a second).
 """
 
 from __future__ import annotations
 
 import argparse
+import csv
 import math
 import types
 from pathlib import Path
@@ -16,10 +18,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from floatfoam.analysis.cummins import MODEL
+from floatfoam.analysis.decay import analyse_decay
 from floatfoam.analysis.report import Sources, build_report
 from floatfoam.case import load_case
 from floatfoam.cli import report as report_command
 from floatfoam.errors import InputError
+from floatfoam.hydrostatics.gz import GZCurve
 from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.layout import list_cases, mark_done
 from floatfoam.motion import write_motion
@@ -71,7 +76,11 @@ def fake_sources(monkeypatch):
                 "verdict_roll": "neutral", "verdict_pitch": "oscillates",
                 "equilibrium": {"z_G": 0.0, "heel": 0.0, "trim": 0.0}, "memoir": {}})
 
-    sources = Sources(load=load_case, theory=theory_summary, potential=None)
+    def gz_curve(case):  # a stand-in righting arm, drawn for the case released heeled
+        angles = np.arange(0.0, 91.0)
+        return GZCurve(angles, 0.03 * np.sin(np.radians(2 * angles)), 90.0, 0.03, 45.0)
+
+    sources = Sources(load=load_case, theory=theory_summary, potential=None, gz=gz_curve)
     monkeypatch.setattr(Sources, "default", classmethod(lambda cls, **kw: sources))
     return sources
 
@@ -104,6 +113,8 @@ def test_report_gathers_theory_and_finished_runs(tmp_path, monkeypatch):
     for name in ("theory.csv", "comparison.csv", "comparison.md"):
         assert (out / "cyl" / name).is_file() and (out / "box" / name).is_file()
     assert "roll period (undamped),1.29,s" in (out / "box" / "theory.csv").read_text()
+    # the righting arm of the case released heeled, not of the one released in heave
+    assert '<img src="box/gz.png"' in html and not (out / "cyl" / "gz.png").exists()
 
 
 def test_report_html_is_self_contained(tmp_path, monkeypatch):
@@ -163,3 +174,78 @@ def test_report_with_real_theory(tmp_path):
     assert f"## {name}: Half-immersed cylinder" in md
     assert "| draft T | 0.0762 |" in md  # half immersed: the draft is the radius
     assert "| heave | linear theory (exact) |" in md and "| heave | CFD medium | 0.63 |" in md
+
+
+def test_report_sets_the_cfd_against_cummins_model(tmp_path):
+    """The decay figure and the Δ columns are against Cummins' model: its row's period is the
+    decay fit of the model's series over the CFD record's span (computed here from
+    decay_series, as `floatfoam decay-model --model cummins` does), and the CFD's Δ period is
+    the relative difference from it; the linear theory keeps its row, the reference its own
+    Δ columns. The release of a third of the radius is large (the linear force is 1.9 % off
+    the exact one at the release): the model takes the exact restoring force."""
+    from PIL import Image
+
+    from floatfoam.potential.models import LARGE_RELEASE, decay_series, linear_restoring_error
+
+    cases, build = tmp_path / "cases", tmp_path / "build"
+    (cases / "cyl").mkdir(parents=True)
+    (cases / "cyl" / "case.toml").write_text(
+        CASE_TOML + '[reference]\nheave_period = { value = 0.6, uncertainty = 0.01 }\n')
+    case = load_case(str(cases / "cyl"))
+    t = np.arange(0.0, 3.0, 2e-3)
+    write_motion(build / case.name / "medium" / "motion.csv", t, z=synthetic_decay(t))
+    mark_done(build / case.name / "medium", "finished")
+    html = build_report(cases_dir=cases, build_dir=build, sources=Sources.default()).read_text()
+    out = build / "report" / case.name
+
+    assert linear_restoring_error(case) > LARGE_RELEASE
+    series = decay_series(case, "cummins", duration=float(t[-1]), nonlinear_restoring=True)
+    model_period = analyse_decay(series["time"], series["z"]).summary()["period_mean"]
+    rows = {r["source"]: r for r in csv.DictReader((out / "comparison.csv").open())}
+    assert float(rows[MODEL]["period"]) == pytest.approx(model_period, rel=1e-9)
+    cfd = rows["CFD medium"]
+    assert float(cfd["period_rel_diff"]) == pytest.approx(
+        float(cfd["period"]) / model_period - 1, rel=1e-9)
+    assert float(cfd["period_rel_diff_measured"]) == pytest.approx(
+        float(cfd["period"]) / 0.6 - 1, rel=1e-9)
+    assert "Δ period vs Cummins' model" in cfd["basis"]
+    assert rows["linear theory (exact)"]["period"]  # the theory keeps its row
+    md = (build / "report" / "index.md").read_text()
+    delta = f"{100 * (float(cfd['period']) / model_period - 1):+.2f} %"
+    assert "| heave | CFD medium | 0.63 |" in md and f"| {delta} |" in md
+    assert "| Δ period vs model |" in md and "| Δ period vs measured |" in md
+    # the figure: the record beside the model, named in its legend (the PNG's Description)
+    legend = Image.open(out / "medium_heave.png").text["Description"].splitlines()
+    assert any(line.startswith(f"{MODEL} (heave free; exact restoring): T_d = "
+                               f"{model_period:.4g} s") for line in legend)
+    assert any(line.startswith("linear theory, no added mass") for line in legend)
+    # A(ω), B(ω) of its potential flow; no GZ curve for a heave release
+    assert f'<img src="{case.name}/potential.png"' in html and not (out / "gz.png").exists()
+
+
+def test_analyse_plot_draws_a_run_beside_cummins_model(tmp_path, capsys):
+    """`floatfoam analyse RUN --plot` on a run of a case of cases/ (here elliptic_cylinder_roll,
+    a run folder written by hand: no stamp, so taken as the case's) draws Cummins' model in the
+    body's free DoFs, with the exact restoring force (its 10° heel is large: C x is 3.8 % off
+    at the release), as the report does; a CSV of no run has no case, and no model."""
+    from PIL import Image
+
+    from floatfoam import layout
+    from floatfoam.cli import main
+
+    t = np.arange(0.0, 4.5, 0.005)
+    run = tmp_path / "elliptic_cylinder_roll" / "coarse"
+    (run / layout.MARKERS).mkdir(parents=True)
+    (run / layout.MARKERS / "info.json").write_text(
+        '{"mesh": "2d", "release": {"heave": 0.0, "heel": 10.0, "trim": 0.0}}')
+    write_motion(run / "motion.csv", t, roll=synthetic_decay(t, 10.0, 0.0, 0.868, 0.0265))
+    mark_done(run, "finished")
+    assert main(["analyse", str(run), "--plot", str(tmp_path / "roll.png")]) == 0
+    legend = Image.open(tmp_path / "roll.png").text["Description"]
+    assert f"{MODEL} (heave, roll, sway free; exact restoring): T_d = 0.8" in legend
+    assert "no model" not in capsys.readouterr().err
+    assert main(["analyse", str(run / "motion.csv"), "--plot", str(tmp_path / "csv.png")]) == 0
+    assert MODEL in Image.open(tmp_path / "csv.png").text["Description"]  # its run's, too
+    (tmp_path / "lone.csv").write_bytes((run / "motion.csv").read_bytes())
+    assert main(["analyse", str(tmp_path / "lone.csv"), "--plot", str(tmp_path / "lone.png")]) == 0
+    assert MODEL not in Image.open(tmp_path / "lone.png").text["Description"]

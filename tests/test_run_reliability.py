@@ -4,8 +4,8 @@ Each test drives the ``floatfoam`` console script in its own process, as a user 
 ``FLOATFOAM_BUILD`` pointing into the test's folder: two drivers racing on one directory, a
 driver stopped with SIGTERM, SIGINT, SIGHUP (after gmsh meshed the domain, elliptic_cylinder) or
 SIGKILL while interFoam runs, a time folder cut short, a run ending exactly at
-end_time, a hostfile, an odd rank count, a fatal OpenFOAM error, and the Slurm batch script's
-tasks run with bash.
+end_time, a finished run continued to a later end_time, a hostfile, an odd rank count, a fatal
+OpenFOAM error, and the Slurm batch script's tasks run with bash.
 """
 
 from __future__ import annotations
@@ -223,6 +223,44 @@ def test_run_ends_exactly_at_end_time(tmp_path):
     run_dir = tmp_path / CASE / "coarse"
     assert (run_dir / "0.25" / "uniform" / "time").is_file()
     assert read_motion(run_dir / "motion.csv")["time"][-1] == pytest.approx(0.25, abs=1e-9)
+
+
+def test_a_finished_run_continues_to_a_later_end_time(tmp_path):
+    """Issue 39: run to 0.1 s, then the same command with run.end_time 0.2 s continues it from
+    0.1 s (not refused, not run from 0): its record runs from the first step to 0.2 s, every
+    row of the first run kept, no row twice, no gap wider than the level's largest time step,
+    and 0.2 s is written. Then run.end_time 0.15 s: the run, finished past it, is kept as it
+    is."""
+    run_dir = tmp_path / CASE / "coarse"
+    first = subprocess.run(command(end_time=0.1, interval=0.05), env=environment(tmp_path),
+                           capture_output=True, text=True, timeout=600)
+    assert first.returncode == 0, first.stderr
+    before = read_motion(run_dir / "motion.csv")
+
+    longer = subprocess.run(command(end_time=0.2, interval=0.05), env=environment(tmp_path),
+                            capture_output=True, text=True, timeout=600)
+    assert longer.returncode == 0, longer.stderr
+    assert "it continues to 0.2 s" in longer.stderr and "other settings" not in longer.stderr
+    assert "from t = 0.1 s" in longer.stdout
+    record = read_motion(run_dir / "motion.csv")
+    t = record["time"]
+    case = load_case(CASE)
+    largest_step = case.settings.run.max_delta_t / domain.level_factor(case, "coarse")
+    assert 0.0 < t[0] <= largest_step * (1 + 1e-6)  # from the release on
+    assert t[-1] == pytest.approx(0.2, abs=1e-9)
+    assert np.all(np.diff(t) > 0) and np.max(np.diff(t)) <= largest_step * (1 + 1e-6)
+    kept = t <= 0.1 + 1e-9
+    for key in ("time", "z"):  # the first run's rows, as they were
+        np.testing.assert_array_equal(record[key][kept], before[key])
+    assert (run_dir / "0.2" / "uniform" / "time").is_file() and is_finished(run_dir)
+
+    shorter = subprocess.run(command(end_time=0.15, interval=0.05), env=environment(tmp_path),
+                             capture_output=True, text=True, timeout=600)
+    assert shorter.returncode == 0, shorter.stderr
+    assert "kept as it is" in shorter.stderr and "longer than asked" in shorter.stderr
+    np.testing.assert_array_equal(read_motion(run_dir / "motion.csv")["time"], t)
+    assert FoamFile(run_dir / "system" / "controlDict")["endTime"] == pytest.approx(0.2)
+    assert is_finished(run_dir)
 
 
 def test_hostfile(tmp_path):

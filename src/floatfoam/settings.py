@@ -9,7 +9,9 @@ interval ≤ end time, ω_min < ω_max). Stages read :class:`Settings`, never th
 A field's range is in its metadata: ``minimum`` (exclusive unless ``closed``), ``maximum``
 (inclusive), ``kind`` (float, int, bool, str); ``added`` marks a field added after runs were
 made whose default leaves them as they were, ``inert`` the value at which a field changes
-nothing (:func:`stamped` leaves both out of a run's stamp).
+nothing, ``extent`` a field that says only how far a run goes (run.end_time: a longer one
+continues the run, :mod:`floatfoam.foam.extension`); :func:`stamped` leaves all three out of a
+run's stamp.
 """
 
 from __future__ import annotations
@@ -49,27 +51,30 @@ _NONE = object()
 
 
 def _spec(default, *, kind=float, minimum=None, closed=False, maximum=None, doc="",
-          added=False, inert=_NONE):
+          added=False, inert=_NONE, extent=False):
     """A settings field: its default and the range :func:`_value` checks. ``added``: a field
     added later, whose default changes nothing that was run before it; ``inert``: a value at
-    which the field changes nothing (as 0 prism layers)."""
+    which the field changes nothing (as 0 prism layers); ``extent``: a field that says only how
+    far a run goes, not what it computes."""
     return field(default=default, metadata={"kind": kind, "minimum": minimum, "closed": closed,
                                             "maximum": maximum, "doc": doc, "added": added,
-                                            "inert": inert})
+                                            "inert": inert, "extent": extent})
 
 
 def stamped(settings) -> dict:
     """The settings as a run's stamp holds them (``dataclasses.asdict`` without the fields
-    marked ``added`` that are at their default, nor those at their ``inert`` value): a field
-    added with a default that changes nothing must not make every run made before it look as
-    of other settings."""
+    marked ``added`` that are at their default, nor those at their ``inert`` value, nor the
+    ``extent`` ones): a field added with a default that changes nothing must not make every
+    run made before it look as of other settings, nor a later run.end_time a finished run
+    (the run's own end time is in its info.json)."""
     out = {}
     for item in fields(settings):
         value = getattr(settings, item.name)
         if hasattr(value, "__dataclass_fields__"):
             out[item.name] = stamped(value)
         elif not ((item.metadata.get("added") and value == item.default)
-                  or _is_inert(value, item.metadata.get("inert", _NONE))):
+                  or _is_inert(value, item.metadata.get("inert", _NONE))
+                  or item.metadata.get("extent")):
             out[item.name] = value
     return out
 
@@ -107,7 +112,9 @@ def time_scheme_coefficient(scheme: str) -> float | None:
 class RunSettings:
     """``[run]``: the CFD run (times in s, distances in m)."""
 
-    end_time: float | None = _spec(None, minimum=0.0, doc="simulated time")
+    end_time: float | None = _spec(None, minimum=0.0, doc="simulated time", extent=True)
+    # in the stamp: it sets the written times, which the adjustable time step lands on (the
+    # steps themselves), and the times a run restarts from
     write_interval: float = _spec(0.1, minimum=0.0)
     max_courant: float = _spec(0.5, minimum=0.0, maximum=5.0)
     max_alpha_courant: float | None = _spec(None, minimum=0.0, maximum=5.0,

@@ -8,6 +8,10 @@ trim → heave, roll, pitch) or lists a reference for:
 * **linear theory (exact)**: the exact hydrostatic linear theory, undamped natural period;
 * **potential flow**: added mass and radiation damping (when :mod:`floatfoam.potential.radiation` is
   available for the case);
+* **Cummins' model**: Cummins' equation in the CFD body's free DoFs, with the exact restoring
+  force where the release is large (:mod:`floatfoam.analysis.cummins`), its series over the
+  CFD record's span put through the CFD's decay analysis; where it cannot be computed, the row
+  says why;
 * **CFD <level>**: each ``build/<case>/<level>/motion.csv``, through :func:`analyse_decay`.
   The period is the damped period T_d of the record (what a decay test measures; the natural
   period T_n = T_d √(1 − ζ²) is in the note) with its 95 % interval;
@@ -23,9 +27,11 @@ trim → heave, roll, pitch) or lists a reference for:
   potential flow is left out, Cummins' model with the exact restoring force
   (:func:`potential_first_cycles`) too.
 
-Relative differences are taken against the reference where the case has one, else against the
-exact linear theory (periods only: the theory has no damping). A CFD record that cannot be
-analysed (NaN, too short, no signal) gives a row with the reason, never a missing row.
+Two relative differences: Δ against Cummins' model (its first cycles' row beside the first
+cycles), or, where it was not computed, against the exact linear theory (periods only: the theory
+has no added mass and no damping; the row's basis says so); and Δ measured, against the
+reference, where the case has one. A CFD record that cannot be analysed (NaN, too short, no
+signal) gives a row with the reason, never a missing row.
 """
 
 from __future__ import annotations
@@ -38,6 +44,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from floatfoam import dofs, layout
+from floatfoam.analysis.cummins import MODEL, ModelFit, ModelRecord, cummins_model, fit_model
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.analysis.extrema import crossing_reduction
 from floatfoam.analysis.measured import fit_record, reference_record
@@ -48,8 +55,11 @@ from floatfoam.motion import dof_series, file_unit, read_motion
 from floatfoam.potential.summary import PotentialSummary
 
 CSV_FIELDS = ("case", "dof", "source", "period", "period_lo", "period_hi", "damping_ratio",
-              "damping_lo", "damping_hi", "period_rel_diff", "damping_rel_diff", "basis",
-              "note")
+              "damping_lo", "damping_hi", "period_rel_diff", "damping_rel_diff",
+              "period_rel_diff_measured", "damping_rel_diff_measured", "basis", "note")
+#: the first cycles' model row (:func:`potential_first_cycles`), their Δ's basis
+FIRST_CYCLES_MODEL = "potential flow (Cummins, exact restoring)"
+THEORY = "linear theory (exact)"
 
 
 @dataclass
@@ -66,12 +76,14 @@ class CfdAnalysis:
 
 @dataclass
 class Comparison:
-    """Rows of the comparison table, notes about omitted sources, and the CFD analyses."""
+    """Rows of the comparison table, notes about omitted sources, the CFD analyses and
+    Cummins' model's (by DoF, for the figures)."""
 
     case: str
     rows: list[dict] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     analyses: list[CfdAnalysis] = field(default_factory=list)
+    models: dict[str, ModelFit] = field(default_factory=dict)
     foreign: list[str] = field(default_factory=list)  # runs left out: of other settings
     foreign_study: bool = False  # the study left out: made of runs of other settings
     study: dict | None = None  # the study of floatfoam validate, when of today's settings
@@ -143,7 +155,9 @@ def _optional(value):
 def _row(case, dof, source, period=None, period_ci=None, zeta=None, zeta_ci=None, note=""):
     return {"case": case, "dof": dof, "source": source, "period": period,
             "period_ci": period_ci, "damping_ratio": zeta, "damping_ci": zeta_ci,
-            "period_rel_diff": None, "damping_rel_diff": None, "basis": "", "note": note}
+            "period_rel_diff": None, "damping_rel_diff": None,
+            "period_rel_diff_measured": None, "damping_rel_diff_measured": None, "basis": "",
+            "note": note}
 
 
 def theory_equilibrium(theory: TheorySummary, dof: str) -> float | None:
@@ -300,7 +314,7 @@ def _theory_rows(case, dof, theory, potential):
                          note=f"errata: {errata}" if errata else "formulas right as printed"))
     period = theory.period(dof)
     note = "" if period is not None else f"no oscillation ({theory.dofs[dof].verdict or ''})"
-    rows.append(_row(case.name, dof, "linear theory (exact)", period, note=note.strip()))
+    rows.append(_row(case.name, dof, THEORY, period, note=note.strip()))
     flow = potential.dof(dof) if potential is not None else None
     if flow is not None and flow.period is not None:
         method = ", ".join(f"{value}{label}" for value, label in
@@ -355,7 +369,7 @@ def _first_cycle_rows(case, dof, analyses, reference, study, model: Callable | N
         except (ImportError, InputError, ValueError, NotImplementedError, RuntimeError) as err:
             notes.append(f"potential flow, {label}: not computed ({err})")
         else:
-            rows.append(_row(case.name, label, "potential flow (Cummins, exact restoring)",
+            rows.append(_row(case.name, label, FIRST_CYCLES_MODEL,
                              r.first_period, zeta=r.damping_ratio,
                              note=f"first trough {r.first_trough * scale:.4g} {unit}; "
                                   "decay-model --model cummins --nonlinear-restoring"))
@@ -376,7 +390,7 @@ def _first_cycle_rows(case, dof, analyses, reference, study, model: Callable | N
     sources = sorted({e[2] for e in (period, zeta, trough) if e is not None and e[2]})
     rows.append(_row(case.name, label, "reference", period and period[0], _range(period),
                      zeta and zeta[0], _range(zeta), "; ".join(notes + sources)))
-    _relative_differences(rows)
+    _relative_differences(rows, FIRST_CYCLES_MODEL)
     return rows
 
 
@@ -425,35 +439,76 @@ def record_fit(case, dof: str, window: float | None = None, options: dict | None
                 "on this one record")
 
 
-def _relative_differences(rows: list[dict]) -> None:
-    """Fill period_rel_diff and damping_rel_diff against the reference, else the theory."""
-    ref = next((r for r in rows if r["source"] == "reference"), None)
-    theory = next((r for r in rows if r["source"] == "linear theory (exact)"), None)
-    for key, diff_key in (("period", "period_rel_diff"), ("damping_ratio", "damping_rel_diff")):
-        base = ref if ref is not None and ref[key] is not None else None
-        if base is None and key == "period" and theory is not None and theory[key]:
-            base = theory
-        if base is None or not base[key]:
-            continue
-        for row in rows:
-            if row is not base and row[key] is not None:
-                row[diff_key] = row[key] / base[key] - 1.0
-                label = "Δ period" if key == "period" else "Δ ζ"
-                row["basis"] = "; ".join(filter(None, (row["basis"],
-                                                       f"{label} vs {base['source']}")))
+def _relative_differences(rows: list[dict], model: str = MODEL) -> None:
+    """Fill the relative differences of ``rows`` (one DoF's): period_rel_diff and
+    damping_rel_diff against the row of ``model``, else — the model not computed — the period
+    against the linear theory's; period_rel_diff_measured and damping_rel_diff_measured against
+    the reference. Each row's basis names what it was set against."""
+    by_source = {r["source"]: r for r in rows}
+    bases = (("", by_source.get(model), by_source.get(THEORY)),
+             ("_measured", by_source.get("reference"), None))
+    for suffix, first, fallback in bases:
+        for key, what in (("period", "Δ period"), ("damping_ratio", "Δ ζ")):
+            base = first if first is not None and first[key] else None
+            if base is None and key == "period" and fallback is not None and fallback[key]:
+                base = fallback
+            if base is None:
+                continue
+            diff_key = ("period" if key == "period" else "damping") + "_rel_diff" + suffix
+            for row in rows:
+                if row is not base and row[key] is not None:
+                    row[diff_key] = row[key] / base[key] - 1.0
+                    row["basis"] = "; ".join(filter(None, (row["basis"],
+                                                           f"{what} vs {base['source']}")))
+
+
+def _model(case, model: Callable, window: float | None, notes: list[str]
+           ) -> ModelRecord | str:
+    """Cummins' model of ``case`` over ``window`` s (``model``: :func:`cummins_model`), or why
+    it was not computed, in words."""
+    try:
+        return model(case, window)
+    except (ImportError, InputError, NotImplementedError, RuntimeError, ValueError) as err:
+        why = str(err).splitlines()[0] if str(err) else type(err).__name__
+        notes.append(f"{MODEL}: not computed ({why})")
+        return why
+
+
+def _model_row(case, dof: str, record: ModelRecord | str, options: dict,
+               window: float | None, models: dict[str, ModelFit]) -> dict:
+    """The row of Cummins' model in ``dof``, its fit kept in ``models`` for the figure; a row
+    with the reason when the model was not computed or its series cannot be analysed.
+    ``window``: the CFD record's span the model was computed over (None: no CFD record)."""
+    if isinstance(record, str):
+        return _row(case.name, dof, MODEL, note=f"not computed: {record}")
+    try:
+        fit = fit_model(record, case, dof, **options)
+    except InputError as err:
+        return _row(case.name, dof, MODEL, note=f"analysis failed: {err}; {record.note()}")
+    models[dof] = fit
+    s = fit.result.summary()
+    span = f"{float(fit.time[-1]):.3g} s"
+    span = f"fitted over {span}, as the CFD's record" if window else \
+        f"fitted over {span} (no CFD record to match)"
+    return _row(case.name, dof, MODEL, s["period_mean"], zeta=s["damping_ratio"],
+                note=f"T_n {s['natural_period']:.4g} s; {span}; {record.note()}")
 
 
 def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = None,
                  potential: Callable | None = potential_flow,
                  potential_cycles: Callable | None = potential_first_cycles,
+                 model: Callable | None = cummins_model,
                  analysis_options: dict | None = None) -> Comparison:
     """The comparison table of one case (see the module docstring for the rows).
 
     ``theory`` is :func:`~floatfoam.hydrostatics.theory.theory_summary` of the case
     (computed when None); ``potential`` gives the potential-flow summary of a case (default
-    :func:`potential_flow`; None leaves potential flow out, and its first cycles with it);
-    ``potential_cycles`` (case, dof, theory) the potential flow's first cycles beside a
-    reference's (default :func:`potential_first_cycles`; None leaves them out);
+    :func:`potential_flow`; None leaves potential flow out, and its first cycles and Cummins'
+    model with it); ``potential_cycles`` (case, dof, theory) the potential flow's first cycles
+    beside a reference's (default :func:`potential_first_cycles`; None leaves them out);
+    ``model`` (case, duration → :class:`~floatfoam.analysis.cummins.ModelRecord`) Cummins'
+    model over the CFD record's span, the Δ columns' basis (default
+    :func:`~floatfoam.analysis.cummins.cummins_model`; None leaves it out);
     ``analysis_options`` go to :func:`analyse_decay` (e.g. ``{"drift": True}``).
     """
     if theory is None:
@@ -463,7 +518,9 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
     reference = case.reference or {}
     comparison = Comparison(case.name)
     cycles_wanted = potential is not None and potential_cycles is not None
+    model_wanted = potential is not None and model is not None
     potential = _potential(case, potential, comparison.notes)
+    record = None if potential is not None else "no potential flow (the notes say why)"
     runs, comparison.foreign = current_runs(case, build_dir)
     if comparison.foreign:
         comparison.notes.append(stale_note(case.name, comparison.foreign))
@@ -481,6 +538,11 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
         rows += [band] if band else []
         comparison.analyses += analyses
         window = max((float(a.time[-1]) for a in analyses), default=None)
+        if model_wanted:  # once, over the first DoF's CFD span (every DoF's is the same)
+            record = record or _model(case, model, window, comparison.notes)
+            rows.insert(len(rows) - len(cfd_rows) - bool(band),
+                        _model_row(case, dof, record, analysis_options or {}, window,
+                                   comparison.models))
         ref_row = _reference_row(case, dof, reference, window, analysis_options)
         if ref_row is not None:
             rows.append(ref_row)
@@ -505,23 +567,37 @@ def _percent(value) -> str:
     return "" if value is None else f"{100 * value:+.2f} %"
 
 
-TABLE_HEADER = ("DoF", "source", "period (s)", "period 95 % CI / ± uncertainty", "Δ period",
-                "damping ratio ζ", "ζ 95 % CI / ± uncertainty", "Δ ζ", "note")
+TABLE_HEADER = ("DoF", "source", "period (s)", "period 95 % CI / ± uncertainty",
+                "Δ period vs model", "damping ratio ζ", "ζ 95 % CI / ± uncertainty",
+                "Δ ζ vs model", "Δ period vs measured", "Δ ζ vs measured", "note")
+MEASURED_COLUMNS = (8, 9)  # of TABLE_HEADER: left out of a table without a reference
 
 
-def table_rows(rows: list[dict]) -> list[list[str]]:
-    """Rows of the comparison as text cells, in the order of TABLE_HEADER."""
-    return [[r["dof"], r["source"], fmt(r["period"]), _interval(r["period_ci"]),
-             _percent(r["period_rel_diff"]), fmt(r["damping_ratio"]), _interval(r["damping_ci"]),
-             _percent(r["damping_rel_diff"]), "; ".join(x for x in (r["basis"], r["note"]) if x)]
-            for r in rows]
+def comparison_table(rows: list[dict]) -> tuple[list[str], list[list[str]]]:
+    """Header and text cells of the comparison's rows, in the order of TABLE_HEADER, without
+    the Δ-vs-measured columns when no row has one (a case without a reference). The columns
+    name what their Δ is against; a row's note names it only where the model's Δ is the
+    linear theory's (the model not computed)."""
+    def note(r):
+        basis = r["basis"] if f"vs {THEORY}" in r["basis"] else ""
+        return "; ".join(x for x in (basis, r["note"]) if x)
+
+    cells = [[r["dof"], r["source"], fmt(r["period"]), _interval(r["period_ci"]),
+              _percent(r["period_rel_diff"]), fmt(r["damping_ratio"]),
+              _interval(r["damping_ci"]), _percent(r["damping_rel_diff"]),
+              _percent(r["period_rel_diff_measured"]), _percent(r["damping_rel_diff_measured"]),
+              note(r)] for r in rows]
+    keep = [i for i in range(len(TABLE_HEADER))
+            if i not in MEASURED_COLUMNS or any(row[i] for row in cells)]
+    return [TABLE_HEADER[i] for i in keep], [[row[i] for i in keep] for row in cells]
 
 
 def comparison_markdown(comparison: Comparison) -> str:
     """The comparison as a Markdown table, with the notes below it."""
-    lines = ["| " + " | ".join(TABLE_HEADER) + " |", "|" + "---|" * len(TABLE_HEADER)]
-    lines += ["| " + " | ".join(cell.replace("|", "\\|") for cell in cells) + " |"
-              for cells in table_rows(comparison.rows)]
+    header, cells = comparison_table(comparison.rows)
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(cell.replace("|", "\\|") for cell in row) + " |"
+              for row in cells]
     lines += [""] + [f"- {note}" for note in comparison.notes]
     return "\n".join(lines) + "\n"
 

@@ -145,8 +145,11 @@ def nearest(run: Run, time: float, *, name: str = "time") -> float:
 
 
 def default_times(run: Run) -> list[float]:
-    """The release (t = 0), the first trough of the released DoF and the last written time."""
-    return sorted({float(run.times[0]), first_trough(run), float(run.times[-1])})
+    """The first written time after the release, the first trough of the released DoF and the
+    last written time. Not t = 0: the water is at rest there, and a picture of its speed is
+    one colour (:func:`open_run` ensures a written time beyond 0)."""
+    after = float(run.times[run.times > 0.0][0])
+    return sorted({after, first_trough(run), float(run.times[-1])})
 
 
 @dataclass(frozen=True)
@@ -261,8 +264,9 @@ def filled(outline):
 
 def arrows(grid, view: View, count: int = 36):
     """Arrows of the water's in-plane velocity on a regular grid of the section (``count``
-    across) and the speed of an arrow one grid step long: the 95th percentile of the sampled
-    speeds (the air's faster currents at the interface are left out)."""
+    across), cut at the view box, and the speed of an arrow one grid step long: the 95th
+    percentile of the sampled speeds (the air's faster currents at the interface are left
+    out)."""
     pv = offscreen_pyvista()
     x0, x1, y0, y1, z0, z1 = view.box
     axis = int(np.argmax(view.normal))
@@ -283,4 +287,7 @@ def arrows(grid, view: View, count: int = 36):
     speed = speed if speed > 0.0 else 1.0  # water at rest: no arrow has a length
     arrow = pv.Arrow(tip_length=0.35, shaft_radius=0.04, tip_radius=0.12)
     factor = (u[1] - u[0]) / speed
-    return probes.glyph(orient="V", scale="V", factor=factor, geom=arrow), speed
+    glyphs = probes.glyph(orient="V", scale="V", factor=factor, geom=arrow)
+    # cut at the view box: a jet's arrows, several steps long, reached into the colour bar's
+    # margin below it and covered its title
+    return glyphs.clip_box(view.box, invert=False), speed

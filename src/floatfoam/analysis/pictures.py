@@ -6,7 +6,9 @@ filled, in a slab or wedge). The water is coloured by its speed |U| or by the vo
 ω = ∇×U normal to the section (pyvista's ``compute_derivative``). The sections, view boxes and
 colour limits are :mod:`floatfoam.analysis.flowview`'s; here they are drawn, through EGL
 without an X display: square on (parallel projection) for a slab or a wedge, obliquely from
-x < 0 for a 3D body (a cutaway: the section in front, the free surface behind it).
+x < 0 for a 3D body (a cutaway: the section in front, the free surface behind it). Every
+picture has a length scale: a bar of a round length in the section's plane, in the air at the
+view's upper right.
 
 Cost, measured on the coarse example runs (2 cores, one busy with a solver): 0.3–0.7 s per PNG
 and 0.2–0.3 s per GIF frame (one per written time, at most MAX_FRAMES), 8–13 s per GIF of
@@ -50,6 +52,18 @@ BODY, SURFACE = "#8c8c8c", "#9ec5e6"
 BAR = {"vertical": False, "position_x": 0.3, "position_y": 0.01, "width": 0.4, "height": 0.11,
        "n_labels": 2, "fmt": "%.3g", "color": "black"}
 FONT = 10  # points, in a PNG; scaled with the window's height
+SCALE_FRACTION = 0.2  # the length scale's bar: the round length nearest this much of the view
+#: how the pictures are drawn: pictures drawn in another style are drawn again by the report
+#: (2: a length scale, arrows cut at the view box, no picture at t = 0 by default)
+STYLE = 2
+
+
+def scale_length(width: float) -> float:
+    """The length of the scale bar of a view ``width`` m wide: the largest of 1, 2 and 5 ×
+    10^k m not above :data:`SCALE_FRACTION` of it."""
+    target = SCALE_FRACTION * width
+    decade = 10.0 ** np.floor(np.log10(target))
+    return float(max(m * decade for m in (1.0, 2.0, 5.0) if m * decade <= target * (1 + 1e-9)))
 
 
 def _body(pl, body, view: View) -> None:
@@ -78,6 +92,7 @@ def _flow_scene(pl, run: Run, view: View, time: float, colour: str, label: str) 
         surface = grid.contour([0.5], scalars=WATER).clip_box(view.box, invert=False)
         _add(pl, surface, color=SURFACE, smooth_shading=True, specular=0.3)
     _body(pl, body, view)
+    _scale_bar(pl, view)
     _label(pl, f"{label}   t = {time:.3f} s")
     _camera(pl, view)
 
@@ -95,6 +110,34 @@ def _bar(pl, title: str) -> dict:
     """The colour bar below the view, titled with the quantity and its unit."""
     return {**BAR, "title": title, "title_font_size": _font(pl, 1.4 * FONT),
             "label_font_size": _font(pl, 1.2 * FONT)}
+
+
+def _scale_bar(pl, view: View) -> None:
+    """A bar of :func:`scale_length` in the section's plane, 4 % of the view's width from the
+    view box's right side as seen (its y minimum for a 3D body, seen from x < 0) and 8 % of
+    its height below its top (in the air), with end ticks and its length written above it."""
+    pv = offscreen_pyvista()
+    x0, x1, y0, y1, z0, z1 = view.box
+    axis = 0 if view.kind == "wedge" else 1  # the section's horizontal axis
+    u0, u1 = (-x1, x1) if view.kind == "wedge" else (y0, y1)  # a wedge shown mirrored
+    length = scale_length(u1 - u0)
+    right, z = u1 - 0.04 * (u1 - u0), z1 - 0.08 * (z1 - z0)
+    if view.kind == "solid":  # seen from x < 0, y grows to the left
+        right = u0 + 0.04 * (u1 - u0) + length
+    tick = 0.015 * (z1 - z0)
+
+    def point(u, height):
+        p = np.array(view.origin, dtype=float)
+        p[axis], p[2] = u, height
+        return p
+
+    ends = (right - length, right)
+    lines = [pv.Line(point(ends[0], z), point(ends[1], z))]
+    lines += [pv.Line(point(u, z - tick), point(u, z + tick)) for u in ends]
+    _add(pl, pv.merge(lines), color="black", line_width=3, lighting=False)
+    pl.add_point_labels([point(right - length / 2, z + 2 * tick)], [f"{length:g} m"],
+                        show_points=False, shape=None, always_visible=True,
+                        font_size=_font(pl, 1.6 * FONT), text_color="black", render=False)
 
 
 def _label(pl, text: str) -> None:
@@ -156,8 +199,8 @@ def flow_pictures(run_dir, out_dir, *, times=None, colour="velocity", title="") 
     out_dir : path
         Where ``flow_<colour>_t<time>.png`` go (made when missing).
     times : sequence of float, optional
-        Times (s), each taken as the nearest written time; by default the release, the first
-        trough of the released DoF and the last written time
+        Times (s), each taken as the nearest written time; by default the first written time
+        after the release, the first trough of the released DoF and the last written time
         (:func:`~floatfoam.analysis.flowview.default_times`).
     colour : {"velocity", "vorticity"}
         The speed |U| or the vorticity normal to the section (module docstring).
@@ -251,6 +294,7 @@ def near_body_snapshot(run_dir, out_path, time=None, *, title="") -> Path:
         for piece in mirrored([glyphs], view):
             _add(pl, piece, color="black", lighting=False)
         _body(pl, body, view)
+        _scale_bar(pl, view)
         _label(pl, f"{title}   t = {time:.3f} s   arrows: water velocity, one grid step "
                    f"= {speed:.2g} m/s")
         _camera(pl, view)

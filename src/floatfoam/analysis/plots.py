@@ -2,14 +2,17 @@
 
 One figure per record, four panels:
 
-* the motion against the undamped linear theory, x_eq + x₀ cos(2π (t − t₀)/T) from the
-  release offset x₀, the least-squares fit, and a damped reference curve when the case has a
-  measured period (and damping);
+* the motion beside Cummins' model (:mod:`floatfoam.analysis.cummins`: its series, drawn about
+  the record's equilibrium), the least-squares fit, any measured record, a damped reference
+  curve when the case has a measured period (and damping), and the undamped linear theory
+  x_eq + x₀ cos(2π (t − t₀)/T) from the release offset x₀ as a thin dotted line (no added
+  mass, no damping: kept to show what the fluid's inertia changes);
 * the amplitude envelope: |extrema| on a log scale with the fitted exponential A e^{−ζω_n s};
 * period per cycle versus amplitude;
 * damping ratio per cycle (and per half cycle) versus amplitude.
 
-All values are drawn in file units (m, deg).
+All values are drawn in file units (m, deg). The PNG's ``Description`` holds the first panel's
+legend, one entry a line: what the figure sets beside the record, for a reader without eyes.
 """
 
 from __future__ import annotations
@@ -35,6 +38,9 @@ class Overlay:
     reference_period, reference_damping, reference_source : a measured reference
     measured_time, measured_offset, measured_label : a measured record (time from the release,
         offset from the equilibrium, file units), drawn as it was measured
+    model_time, model_offset, model_label : Cummins' model's series (offset from its
+        equilibrium, file units; :class:`~floatfoam.analysis.cummins.ModelFit`)
+    model_period, model_damping : its damped period (s) and damping ratio, by the decay fit
     """
 
     theory_period: float | None = None
@@ -46,6 +52,11 @@ class Overlay:
     measured_time: np.ndarray | None = None
     measured_offset: np.ndarray | None = None
     measured_label: str = ""
+    model_time: np.ndarray | None = None
+    model_offset: np.ndarray | None = None
+    model_label: str = ""
+    model_period: float | None = None
+    model_damping: float | None = None
 
 
 def free_decay_curve(time, t0: float, offset: float, period: float, zeta: float = 0.0):
@@ -69,10 +80,16 @@ def _time_panel(ax, time, value, result: DecayResult, overlay: Overlay, scale, u
     fitted = time >= fit.t0  # a record analysed from --start is fitted from there on
     ax.plot(time[fitted], fit.evaluate(time[fitted]) * scale, color="C1", lw=1, ls="--",
             label=f"fit: T_d = {fit.damped_period()[0]:.4g} s, ζ = {fit.zeta:.3g}")
+    if overlay.model_time is not None:
+        shown = overlay.model_time <= time[-1]
+        ax.plot(overlay.model_time[shown], eq + overlay.model_offset[shown], color="C3", lw=1.2,
+                label=f"{overlay.model_label or 'model'}: T_d = {overlay.model_period:.4g} s, "
+                      f"ζ = {overlay.model_damping:.3g}")
     if overlay.theory_period:
         ax.plot(time, eq + free_decay_curve(time, time[0], offset, overlay.theory_period),
-                color="0.45", lw=1, ls=":",
-                label=f"linear theory, undamped: T = {overlay.theory_period:.4g} s")
+                color="0.45", lw=0.7, ls=":",
+                label=f"linear theory, no added mass, undamped: T = "
+                      f"{overlay.theory_period:.4g} s")
     if overlay.reference_period:
         zeta = overlay.reference_damping or 0.0
         label = f"reference {overlay.reference_source}".strip()
@@ -123,6 +140,8 @@ def _period_panel(ax, result: DecayResult, overlay: Overlay, scale, unit):
             label="peak to peak")
     period, half = result.fit.damped_period()
     _band(ax, period, period - half, period + half, "C1", "fit T_d ± 95 %")
+    if overlay.model_period:
+        ax.axhline(overlay.model_period, color="C3", label="Cummins' model")
     if overlay.theory_period:
         ax.axhline(overlay.theory_period, color="0.45", ls=":", label="linear theory")
     if overlay.reference_period:
@@ -140,6 +159,8 @@ def _damping_panel(ax, result: DecayResult, overlay: Overlay, scale, unit):
             label="per half cycle")
     zeta, hw = result.fit.damping_ratio()
     _band(ax, zeta, zeta - hw, zeta + hw, "C1", "fit ζ ± 95 %")
+    if overlay.model_damping is not None:
+        ax.axhline(overlay.model_damping, color="C3", label="Cummins' model")
     if overlay.reference_damping is not None:
         ax.axhline(overlay.reference_damping, color="C2", ls="-.", label="reference")
     ax.set_xlabel(f"mean amplitude ({unit})")
@@ -155,7 +176,8 @@ def plot_decay(path: str | Path, time, value, result: DecayResult, *,
     time, value = np.asarray(time, dtype=float), np.asarray(value, dtype=float)
     fig = Figure(figsize=(11, 7.5), layout="constrained")
     grid = fig.add_gridspec(2, 3)
-    _time_panel(fig.add_subplot(grid[0, :]), time, value, result, overlay, scale, unit)
+    motion = fig.add_subplot(grid[0, :])
+    _time_panel(motion, time, value, result, overlay, scale, unit)
     _envelope_panel(fig.add_subplot(grid[1, 0]), result, scale, unit)
     _period_panel(fig.add_subplot(grid[1, 1]), result, overlay, scale, unit)
     _damping_panel(fig.add_subplot(grid[1, 2]), result, overlay, scale, unit)
@@ -163,7 +185,8 @@ def plot_decay(path: str | Path, time, value, result: DecayResult, *,
         fig.suptitle(title)
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    legend = "\n".join(motion.get_legend_handles_labels()[1])
+    fig.savefig(path, dpi=110, metadata={"Description": legend})
     return path
 
 

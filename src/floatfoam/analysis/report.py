@@ -4,10 +4,14 @@
 and, for each case, writes into ``build/report/``:
 
 * the linear-theory table (always, even before any CFD run),
-* the comparison of :mod:`floatfoam.analysis.compare` (memoir, theory, potential flow, each
-  ``build/<case>/<level>/motion.csv``, the reference) as ``<case>/comparison.{md,csv}``,
-* one decay figure per CFD run and DoF (``<case>/<level>_<dof>.png``,
-  :mod:`floatfoam.analysis.plots`),
+* the comparison of :mod:`floatfoam.analysis.compare` (memoir, theory, potential flow,
+  Cummins' model, each ``build/<case>/<level>/motion.csv``, the reference; Δ against Cummins'
+  model and against the measurement) as ``<case>/comparison.{md,csv}``,
+* one decay figure per CFD run and DoF, the record beside Cummins' model and any measurement
+  (``<case>/<level>_<dof>.png``, :mod:`floatfoam.analysis.plots`),
+* the righting arm GZ(φ) of a case released heeled (``<case>/gz.png``,
+  :func:`floatfoam.hydrostatics.gz.plot_gz`) and the radiation coefficients A(ω), B(ω) of
+  its potential flow (``<case>/potential.png``, :func:`floatfoam.potential.plot.plot_coefficients`),
 * pictures of the flow of each run (free surface, speed, pressure near the body, a GIF of the
   decay: :mod:`floatfoam.analysis.pictures`), when asked,
 * the grid and time-step study of ``floatfoam validate``, when it has been run,
@@ -27,24 +31,19 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
 import floatfoam
 from floatfoam import dofs, layout
 from floatfoam.analysis.compare import (
-    TABLE_HEADER,
     Comparison,
     compare_case,
+    comparison_table,
     fmt,
     potential_flow,
-    reference_entry,
-    table_rows,
-    theory_equilibrium,
     write_comparison,
 )
 from floatfoam.analysis.document import Document
-from floatfoam.analysis.measured import reference_record
-from floatfoam.analysis.plots import Overlay, plot_decay
+from floatfoam.analysis.overlay import decay_overlay
+from floatfoam.analysis.plots import plot_decay
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.motion import file_unit
@@ -73,20 +72,34 @@ EQUILIBRIUM_ROWS = (("z_G", "equilibrium z of G", "m"), ("heel", "equilibrium he
 @dataclass(frozen=True)
 class Sources:
     """Where the report takes each case's inputs from: ``load`` (a case folder → the loaded
-    case), ``theory`` (case → theory summary) and ``potential`` (case → potential-flow summary,
-    None to leave potential flow out). :meth:`default` is the project's own."""
+    case), ``theory`` (case → theory summary), ``potential`` (case → potential-flow summary,
+    None to leave potential flow out), ``model`` (case, duration → Cummins' model,
+    :func:`~floatfoam.analysis.cummins.cummins_model`; None to leave it out) and
+    ``coefficients`` (case → radiation coefficients for the A(ω), B(ω) figure; None to leave
+    it out) and ``gz`` (case → GZ curve, for a case released heeled; None to leave it out).
+    :meth:`default` is the project's own; potential flow's results are cached in
+    build/potential, so a report drawn again solves nothing again."""
 
     load: Callable
     theory: Callable
     potential: Callable | None
+    model: Callable | None = None
+    coefficients: Callable | None = None
+    gz: Callable | None = None
 
     @classmethod
     def default(cls, include_potential: bool = True) -> Sources:
+        from floatfoam.analysis.cummins import cummins_model
         from floatfoam.case import load_case
+        from floatfoam.hydrostatics.gz import gz_curve
         from floatfoam.hydrostatics.theory import theory_summary
+        from floatfoam.potential.radiation import radiation_coefficients
 
+        flow = {"potential": potential_flow, "model": cummins_model,
+                "coefficients": radiation_coefficients} if include_potential else \
+            {"potential": None}
         return cls(load=lambda folder: load_case(str(folder)), theory=theory_summary,
-                   potential=potential_flow if include_potential else None)
+                   gz=gz_curve, **flow)
 
 
 def _cell(value) -> str:
@@ -110,39 +123,53 @@ def theory_table(summary: TheorySummary) -> tuple[list[str], list[list[str]]]:
     return header, rows
 
 
-def _overlay(case, theory: TheorySummary, dof: str) -> Overlay:
-    scale, _ = file_unit(dof)
-    eq = theory_equilibrium(theory, dof)
-    release = (getattr(case, "release", None) or {}).get(dofs.dof(dof).release_key)
-    reference = case.reference or {}
-    period = reference_entry(reference, f"{dof}_period")
-    zeta = reference_entry(reference, f"{dof}_damping_ratio")
-    sources = sorted({e[2] for e in (period, zeta) if e and e[2]})
-    measured = reference_record(case, dof)
-    if measured is not None:
-        first = measured.offset[np.searchsorted(measured.time, 0.0)]  # file units already
-        label = f"measured ({measured.source}; released {first:.4g} {file_unit(dof)[1]})"
-    return Overlay(theory_period=theory.period(dof),
-                   equilibrium=None if eq is None else eq * scale,
-                   release=None if release is None else float(release),
-                   reference_period=period[0] if period else None,
-                   reference_damping=zeta[0] if zeta else None,
-                   reference_source=f"({'; '.join(sources)})" if sources else "",
-                   measured_time=None if measured is None else measured.time,
-                   measured_offset=None if measured is None else measured.offset,
-                   measured_label="" if measured is None else label)
-
-
 def _plots(case, theory, comparison: Comparison, out_dir: Path) -> list[tuple[str, str]]:
     images = []
     for run in comparison.analyses:
         scale, unit = file_unit(run.dof)
         name = f"{case.name}/{run.level}_{run.dof}.png"
+        model = comparison.models.get(run.dof)
         plot_decay(out_dir / name, run.time, run.value, run.result,
-                   overlay=_overlay(case, theory, run.dof), scale=scale, unit=unit,
+                   overlay=decay_overlay(case, theory, run.dof, model), scale=scale, unit=unit,
                    title=f"{case.name}, {run.level} mesh: {run.dof} decay")
-        images.append((name, f"{case.name} {run.level} {run.dof} decay"))
+        beside = f" beside {model.label}" if model else ""
+        images.append((name, f"{case.name} {run.level} {run.dof} decay{beside}"))
     return images
+
+
+def _figures(doc: Document, case, sources: Sources, out_dir: Path) -> None:
+    """The righting arm GZ(φ) of a case released heeled (``sources.gz``, as ``floatfoam gz``:
+    to 90° by 1°) and the radiation coefficients A(ω), B(ω) of its potential flow
+    (``sources.coefficients``, as ``floatfoam potential --plot``); a line saying why where
+    one cannot be drawn."""
+    images = []
+    heeled = float((getattr(case, "release", None) or {}).get("heel", 0.0) or 0.0) != 0.0
+    if sources.gz is not None and heeled:
+        from floatfoam.hydrostatics.gz import plot_gz
+
+        try:
+            plot_gz(sources.gz(case), out_dir / case.name / "gz.png",
+                    title=f"{case.name}: righting arm")
+            images.append((f"{case.name}/gz.png", f"{case.name}: righting arm GZ against heel"))
+        except (InputError, ValueError, RuntimeError) as err:
+            doc.paragraph(f"GZ curve: not drawn ({err})", note=True)
+    if sources.coefficients is not None:
+        from floatfoam.potential.plot import plot_coefficients
+
+        try:
+            coefficients = sources.coefficients(case)
+            summary = sources.potential(case) if sources.potential else None
+        except (ImportError, InputError, NotImplementedError, RuntimeError) as err:
+            doc.paragraph(f"A(ω), B(ω): not drawn ({str(err).splitlines()[0]})", note=True)
+        else:
+            plot_coefficients(coefficients, out_dir / case.name / "potential.png",
+                              summary=summary, title=f"{case.name}: radiation coefficients")
+            images.append((f"{case.name}/potential.png", f"{case.name}: added mass A(ω) and "
+                                                         "radiation damping B(ω)"))
+    if images:
+        doc.heading("Stability and potential flow", 3)
+        for src, alt in images:
+            doc.image(src, alt)
 
 
 def _write_theory_csv(header, rows, path: Path) -> None:
@@ -169,14 +196,18 @@ def _intro(doc: Document, case) -> str:
 def _comparison_section(doc: Document, comparison: Comparison) -> None:
     doc.heading("Period and damping", 3)
     if comparison.rows:
-        doc.table(TABLE_HEADER, table_rows(comparison.rows))
-        doc.paragraph("Theory rows give the undamped natural period; CFD rows the damped period "
-                      "T_d of the record with its 95 % confidence interval (from the fit's "
+        doc.table(*comparison_table(comparison.rows))
+        doc.paragraph("Theory rows give the undamped natural period; Cummins' model and CFD "
+                      "rows the damped period T_d of the record, fitted the same way over the "
+                      "same span, the CFD's with its 95 % confidence interval (from the fit's "
                       "covariance: optimistic when the misfit is correlated in time); the "
                       "reference row its value ± the stated uncertainty, or, where the "
                       "reference gives only a measured record, that record's decay fit over "
-                      "the CFD's span with the fit's 95 % interval. Δ: relative difference "
-                      "to the reference, else to the exact linear theory.", note=True)
+                      "the CFD's span with the fit's 95 % interval. Δ vs model: relative "
+                      "difference to Cummins' model (the body's free DoFs, exact restoring "
+                      "where the release is large), or to the exact linear theory where the "
+                      "model was not computed (the note says which); Δ vs measured: to the "
+                      "reference.", note=True)
     doc.bullets(comparison.notes)
 
 
@@ -208,7 +239,7 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
     doc.heading("Linear hydrostatic theory", 3)
     doc.table(header, rows)
     comparison = compare_case(case, build_dir=build_dir, theory=theory,
-                              potential=sources.potential)
+                              potential=sources.potential, model=sources.model)
     write_comparison(comparison, case_out)
     _comparison_section(doc, comparison)
     images = _plots(case, theory, comparison, out_dir)
@@ -216,6 +247,7 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
         doc.heading("Decay records", 3)
         for src, alt in images:
             doc.image(src, alt)
+    _figures(doc, case, sources, out_dir)
     if pictures:
         _pictures_section(doc, case.name, sorted({r.level for r in comparison.analyses},
                                                  key=layout.LEVELS.index), build_dir, out_dir)
@@ -227,16 +259,19 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
 def _pictures_section(doc: Document, case_name: str, levels: list[str], build_dir: Path,
                       out_dir: Path) -> None:
     """Pictures of the flow of each finished run (:mod:`floatfoam.analysis.pictures`), drawn
-    once per run (again when the run is newer than its pictures) and copied beside the page."""
-    from floatfoam.analysis.pictures import case_pictures
+    once per run (again when the run is newer than its pictures, or they were drawn in another
+    :data:`~floatfoam.analysis.pictures.STYLE`) and copied beside the page."""
+    from floatfoam.analysis.pictures import STYLE, case_pictures
 
     shown = []
     for level in levels:
         folder = layout.case_build_dir(case_name, build_dir) / "pictures" / level
         done = folder / ".drawn"
         finished = layout.marker(layout.run_dir(case_name, level, build_dir), layout.FINISHED)
-        pairs = json.loads(done.read_text()) if done.is_file() \
-            and done.stat().st_mtime >= finished.stat().st_mtime else []
+        drawn = json.loads(done.read_text()) if done.is_file() \
+            and done.stat().st_mtime >= finished.stat().st_mtime else {}
+        pairs = drawn.get("pictures", []) if isinstance(drawn, dict) \
+            and drawn.get("style") == STYLE else []
         if not pairs or not all((folder / name).is_file() for name, _ in pairs):
             print(f"report: drawing the flow of {case_name}/{level} (pyvista)", file=sys.stderr)
             try:
@@ -245,7 +280,7 @@ def _pictures_section(doc: Document, case_name: str, levels: list[str], build_di
                 why = err if isinstance(err, InputError) else f"{type(err).__name__}: {err}"
                 doc.paragraph(f"{level}: no pictures of the flow ({why})", note=True)
                 continue
-            done.write_text(json.dumps(pairs))
+            done.write_text(json.dumps({"style": STYLE, "pictures": pairs}))
         for name, alt in pairs:
             target = f"{case_name}/pictures_{level}_{name}"
             shutil.copyfile(folder / name, out_dir / target)

@@ -40,7 +40,9 @@ def add_arguments(parser) -> None:
                              "released several)")
     parser.add_argument("--plot", metavar="PNG",
                         help="write the decay figure to PNG (several DoFs: PNG's name with "
-                             "-<dof> before its suffix)")
+                             "-<dof> before its suffix); a run of a case of cases/ is drawn "
+                             "beside Cummins' model and the case's measurement, as in the "
+                             "report")
 
 
 def register(sub) -> None:
@@ -112,10 +114,18 @@ def _analyse(args, path, motion: dict, dof: str, reason: str, plot: str | None) 
     data = {"source": str(path), **decay_dict(result, scale=scale, unit=unit, dof=dof),
             "dof_from": reason}
     if plot:
+        from floatfoam.analysis.overlay import run_overlay
         from floatfoam.analysis.plots import plot_decay
+        from floatfoam.analysis.released import run_folder
 
-        data["plot"] = str(plot_decay(plot, time, value, result, scale=scale, unit=unit,
-                                      title=f"{path}: {dof} decay"))
+        overlay, why = None, ""
+        if run_folder(path) is not None:  # a run of a case: Cummins' model beside it
+            overlay, why = run_overlay(run_folder(path), dof, float(time[-1]), drift=args.drift,
+                                       quadratic=args.quadratic, t_start=args.start)
+        if why:
+            print(f"note: the figure has no model beside the record: {why}", file=sys.stderr)
+        data["plot"] = str(plot_decay(plot, time, value, result, overlay=overlay, scale=scale,
+                                      unit=unit, title=f"{path}: {dof} decay"))
     return data
 
 

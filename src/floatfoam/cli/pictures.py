@@ -19,8 +19,8 @@ def register(sub) -> None:
     p.add_argument("--colour", default="velocity",
                    help=f"colour of the water: {' or '.join(COLOURS)} (default velocity)")
     p.add_argument("--times", type=float, nargs="+", default=None, metavar="T",
-                   help="times in s within the written record (default: the release, the "
-                        "first trough and the last written time)")
+                   help="times in s within the written record (default: the first written "
+                        "time after the release, the first trough and the last written time)")
     p.set_defaults(func=run)
 
 

@@ -12,7 +12,8 @@ def add_arguments(parser) -> None:
                         help="folder of the runs, <build>/<case>/<level>/motion.csv "
                              "(default: the project's build/)")
     parser.add_argument("--no-potential", dest="potential", action="store_false",
-                        help="leave potential flow out of the comparison")
+                        help="leave potential flow out: its row, Cummins' model (the Δ columns "
+                             "then against the linear theory) and the A(ω), B(ω) figure")
     parser.add_argument("--no-pictures", dest="pictures", action="store_false",
                         help="leave the pictures of the flow out (pyvista; 10-20 s per run "
                              "the first time, reused after)")

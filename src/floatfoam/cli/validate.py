@@ -30,7 +30,8 @@ def register(sub) -> None:
     motion = p.add_mutually_exclusive_group()
     motion.add_argument("--morphing", type=float, default=None, metavar="F",
                         help="the coarse level's mesh-motion run, which no level changes: its "
-                        "six-DoF distances × F, or for the Laplacian (F > 1) its diffusivity "
+                        "six-DoF distances × F (÷ F at their defaults, which reach as far as "
+                        "the tank allows), or for the Laplacian (F > 1) its diffusivity "
                         "1/d instead of 1/d²; each quantity's change is U_motion, in U_num "
                         "(default: the study's own factor when its run is finished, else "
                         "1.5)")

@@ -1,7 +1,8 @@
 """``floatfoam run``: render, mesh, initialise and run a case at a mesh level, resumably.
 
 Steps (each leaves a marker in ``<run>/.floatfoam/``, so an interrupted run resumes where it
-stopped; the solver restarts from its last written time):
+stopped; the solver restarts from its last written time; a finished run asked for a later
+run.end_time continues from its last time, :mod:`floatfoam.foam.extension`):
 
     render → gmshToFoam, patchTypes, checkMesh (or blockMesh) → fields → setAlphaField →
     [decomposePar] → interFoam → [reconstructPar] → finished
@@ -31,7 +32,7 @@ from pathlib import Path
 from floatfoam import layout, settings
 from floatfoam.case import Case
 from floatfoam.errors import InputError
-from floatfoam.foam import domain, paraview, runner
+from floatfoam.foam import domain, extension, paraview, runner
 from floatfoam.foam.motionlog import rebuild_motion
 from floatfoam.foam.ranks import check_ranks
 from floatfoam.foam.render import end_time_of, release_state, render
@@ -56,9 +57,10 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     run made before another run's) and the mesh motion they resolve to
     (:func:`_resolved_motion`), the level, the time-step divisor and morphing factor of a
     study's run, the shared dictionaries and the solver binary. Not the case's words ([case]
-    title, description, and the name of the case it extends: its tables are in) nor its
+    title, description, and the name of the case it extends: its tables are in), nor its
     [reference] measurements: adding a measurement must not make a finished run look
-    foreign."""
+    foreign; nor run.end_time, which says only how far the run goes (its own is in its
+    info.json: :mod:`floatfoam.foam.extension`)."""
     stamp = settings.stamped(case.settings)
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()
@@ -156,13 +158,23 @@ def solver_path(case: Case, check: bool = True) -> Path:
 def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None,
                  divisor: int = 1, morphing: float = 1.0) -> tuple[Path, bool | None]:
     """The run directory and what it holds: None (nothing), True (a finished run of these
-    settings), False (an unfinished one to resume). Raises InputError when it holds a run of
-    other settings (or --np). ``case`` is the command's, before ``divisor`` and ``morphing``
-    change it. Writes nothing."""
+    settings, to reuse: its own end time or a later one), False (a run to resume: unfinished,
+    or finished and continued to the command's later end time). Raises InputError when it
+    holds a run of other settings (or --np), or an unfinished one already written past the
+    command's end time (:func:`floatfoam.foam.extension.end_change`). ``case`` is the
+    command's, before ``divisor`` and ``morphing`` change it. Writes nothing."""
+    run_dir, finished, _ = _existing(case, level, np_, build_dir, divisor, morphing)
+    return run_dir, finished
+
+
+def _existing(case: Case, level: str, np_: int, build_dir: Path | None, divisor: int,
+              morphing: float) -> tuple[Path, bool | None, str | None]:
+    """:func:`existing_run`, and what the command's end time makes of the run (the change of
+    :func:`floatfoam.foam.extension.end_change`)."""
     run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor,
                              morphing=morphing)
     if not run_dir.exists():
-        return run_dir, None
+        return run_dir, None, None
     stamp = run_dir / layout.MARKERS / "settings"
     old = (stamp.read_text().split() if stamp.exists() else []) + ["?", "?"]
     finished = layout.is_finished(run_dir)
@@ -171,28 +183,49 @@ def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None
         raise InputError(f"{run_dir} holds {what} with other settings (or --np); valid: "
                          "the same settings to resume, or `floatfoam run` with --force to "
                          "move it aside")
-    return run_dir, finished
+    change = extension.end_change(end_time_of(case), run_dir, finished)
+    return run_dir, finished and change != extension.CONTINUE, change
 
 
 def prepare(case: Case, level: str, np_: int, force: bool,
             build_dir: Path | None = None, divisor: int = 1,
             morphing: float = 1.0) -> tuple[Path, bool, bool]:
     """The run directory, whether it resumes, and whether it is already finished. ``case``
-    is the command's, before ``divisor`` and ``morphing`` change it: the stamp holds them."""
+    is the command's, before ``divisor`` and ``morphing`` change it: the stamp holds them.
+    A run of these settings asked for another run.end_time is continued to it, or kept when
+    finished past it (:mod:`floatfoam.foam.extension`); one line says which."""
     run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor,
                              morphing=morphing)
     digest = settings_digest(case, level, divisor=divisor, morphing=morphing)
     stamp = run_dir / layout.MARKERS / "settings"
+    label = f"{case.name}/{run_dir.name}"
     if run_dir.exists():
         if force:
             moved = runner.move_aside(run_dir)
-            print(f"[{case.name}/{run_dir.name}] earlier run moved to {moved}")
+            print(f"[{label}] earlier run moved to {moved}")
         else:
-            _, finished = existing_run(case, level, np_, build_dir, divisor, morphing)
+            _, finished, change = _existing(case, level, np_, build_dir, divisor, morphing)
+            if change is not None:
+                _new_end_time(case, run_dir, change, label)
             return run_dir, not finished, bool(finished)
     (run_dir / layout.MARKERS).mkdir(parents=True)
     stamp.write_text(f"{digest} {np_}\n")
     return run_dir, False, False
+
+
+def _new_end_time(case: Case, run_dir: Path, change: str, label: str) -> None:
+    """Continue the run in ``run_dir`` to the command's end time, or keep it as it is
+    (``change``: :func:`floatfoam.foam.extension.end_change`), and say which in one line."""
+    asked, own = end_time_of(case), extension.own_end_time(run_dir)
+    if change == extension.KEEP:
+        print(f"[{label}] the finished run goes to {own:g} s, past run.end_time = {asked:g} s: "
+              "kept as it is, its motion.csv (what every analysis of the run reads) longer "
+              f"than asked; --force runs it anew to {asked:g} s", file=sys.stderr)
+        return
+    set_aside(case, run_dir, label)
+    extension.continue_to(run_dir, asked, case.settings.run.write_interval)
+    print(f"[{label}] run.end_time = {asked:g} s (the run was made to {own:g} s): it "
+          f"continues to {asked:g} s", file=sys.stderr)
 
 
 def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = False,
@@ -415,10 +448,9 @@ def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
     info = json.loads(info_file.read_text())
     paraview.write_foam_file(run_dir, case.name)
     if resumed:
-        print(f"[{label}] resuming the run in {run_dir}")
-        for moved in set_aside_incomplete(run_dir, moving=not case.settings.run.static_body):
-            print(f"[{label}] an incomplete time folder (a write cut short) is set aside: "
-                  f"{moved}", file=sys.stderr)
+        set_aside(case, run_dir, label)
+        restart = latest_time(run_dir) or 0.0
+        print(f"[{label}] resuming the run in {run_dir} from t = {restart:g} s")
     check = domain.make_polymesh(mesh, run_dir)
     if check is not None:
         print(mesh_line(label, info, check), file=sys.stderr)
@@ -456,6 +488,14 @@ def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
 
 
 STALL_FRACTION = 0.01  # of the level's largest time step: below it, the mesh is giving out
+
+
+def set_aside(case: Case, run_dir: Path, label: str) -> None:
+    """Set a run's incomplete trailing time folders aside
+    (:func:`floatfoam.foam.timedirs.set_aside_incomplete`), one line each."""
+    for moved in set_aside_incomplete(run_dir, moving=not case.settings.run.static_body):
+        print(f"[{label}] an incomplete time folder (a write cut short) is set aside: "
+              f"{moved}", file=sys.stderr)
 
 
 def to_release_pose(case: Case, run_dir: Path, info: dict, np_: int, hostfile: Path | None,

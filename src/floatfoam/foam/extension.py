@@ -1,0 +1,92 @@
+"""A run asked for another end time than the one it was made to (``--set run.end_time``).
+
+run.end_time says only how far a run goes: a run's stamp
+(:func:`floatfoam.foam.driver.settings_digest`) leaves it out, and the run's own end time is
+in its ``.floatfoam/info.json``. A run folder of the command's settings asked for another end
+time
+
+* **continues** when that time lies past its written times: a finished run from its last time
+  (its finished and reconstructPar markers are cleared, so the run is gathered for ParaView
+  again at its new end), an unfinished one from its latest complete time, as an interrupted run
+  resumes. controlDict's ``endTime`` and info.json's ``end_time`` become the time asked, and
+  ``writeInterval`` the largest interval ≤ run.write_interval that divides the time left
+  (:func:`floatfoam.foam.render.write_interval`; OpenFOAM counts write times from the time it
+  restarts from), so the last write falls on the new end. The motion record goes on from the
+  restart (:class:`floatfoam.foam.motionlog.MotionWriter`): no row lost or doubled. The steps
+  land on the continued run's own write times, so it matches a run made to the later end time
+  from the start within the time step's error, not to the bit.
+* is **kept as it is** when it is finished past that time: written times are never cut. Its
+  record (motion.csv, which every analysis of the run reads) is longer than asked; ``--force``
+  runs it anew to the time asked.
+* is **refused** (InputError) when it is unfinished and already written as far as that time:
+  valid is an end time past its written times, or ``--force``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+from floatfoam import layout
+from floatfoam.errors import InputError
+from floatfoam.foam.paraview import RECONSTRUCT
+from floatfoam.foam.render import write_interval
+from floatfoam.foam.timedirs import latest_time
+
+CONTINUE = "continue"  # the run goes on to the end time asked
+KEEP = "keep"  # a finished run past the end time asked: kept as it is
+
+# end times this close (relative) are one: info.json holds the float run.end_time gave
+SAME_TIME = 1e-9
+
+
+def own_end_time(run_dir: Path) -> float | None:
+    """The end time the run in ``run_dir`` goes to (its info.json); None before it was
+    rendered."""
+    info = Path(run_dir) / layout.MARKERS / "info.json"
+    return json.loads(info.read_text()).get("end_time") if info.is_file() else None
+
+
+def end_change(asked: float, run_dir: Path, finished: bool) -> str | None:
+    """What the end time ``asked`` (s) makes of the run in ``run_dir``, stamped with the
+    command's settings and ``finished`` or not: None (its own end time, or none rendered yet:
+    the run as it is), :data:`CONTINUE` or :data:`KEEP` (the module docstring). Raises
+    InputError for an unfinished run written as far as ``asked``. Writes nothing."""
+    own = own_end_time(run_dir)
+    if own is None or math.isclose(asked, own, rel_tol=SAME_TIME):
+        return None
+    if finished:
+        return CONTINUE if asked > own else KEEP
+    written = latest_time(run_dir) or 0.0
+    if asked > written and not math.isclose(asked, written, rel_tol=SAME_TIME):
+        return CONTINUE
+    raise InputError(f"run.end_time = {asked:g} s: the unfinished run in {run_dir} is already "
+                     f"written to {written:g} s (it goes to {own:g} s); valid: run.end_time > "
+                     f"{written:g} s to continue it, or --force to run it anew")
+
+
+def continue_to(run_dir: Path, end_time: float, interval: float) -> float:
+    """Set the run in ``run_dir`` to go on to ``end_time`` (s) from its latest complete time,
+    writing every ``interval`` (run.write_interval, shrunk to divide the time left): its
+    finished and reconstructPar markers cleared first (a driver stopped part way leaves a run
+    to resume, never one marked finished short of its end time), then controlDict's endTime
+    and writeInterval and info.json's end_time. Returns the time it restarts from. Call it
+    after :func:`floatfoam.foam.timedirs.set_aside_incomplete`."""
+    from foamlib import FoamFile
+
+    run_dir = Path(run_dir)
+    for step in (layout.FINISHED, RECONSTRUCT):
+        layout.marker(run_dir, step).unlink(missing_ok=True)
+    restart = latest_time(run_dir) or 0.0
+    left = end_time - restart
+    control = FoamFile(run_dir / "system" / "controlDict")
+    control["endTime"] = end_time
+    control["writeInterval"] = write_interval(left, min(interval, left))
+    info_file = run_dir / layout.MARKERS / "info.json"
+    info = json.loads(info_file.read_text())
+    info["end_time"] = end_time
+    fresh = info_file.with_name(info_file.name + ".new")
+    fresh.write_text(json.dumps(info, indent=2))
+    fresh.replace(info_file)
+    return restart
