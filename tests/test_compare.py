@@ -164,15 +164,20 @@ def test_markdown_and_csv(tmp_path, potential, model):
     assert "| Δ period vs model |" in text and "| Δ ζ vs measured |" in text
 
 
+def coarse_comparison(tmp_path, potential, model):
+    """The comparison of a fake case with one coarse run of the synthetic decay."""
+    case = fake_case(tmp_path)
+    t = np.arange(0.0, 3.0, 2e-3)
+    write_run(tmp_path / "build", case.name, "coarse", t, z=synthetic_decay(t, 0.0254, -0.001))
+    return compare_case(case, build_dir=tmp_path / "build", theory=THEORY,
+                        potential=potential, model=model)
+
+
 def test_without_the_model_differences_are_to_theory(tmp_path, no_potential, model):
     """Potential flow not available: Cummins' model's row says why, and the period is set
     against the linear theory's, the basis saying so; without a reference there are no
     Δ-vs-measured columns."""
-    case = fake_case(tmp_path)
-    t = np.arange(0.0, 3.0, 2e-3)
-    write_run(tmp_path / "build", case.name, "coarse", t, z=synthetic_decay(t, 0.0254, -0.001))
-    comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY,
-                              potential=no_potential, model=model)
+    comparison = coarse_comparison(tmp_path, no_potential, model)
     rows = rows_by_source(comparison)
     assert "potential flow" not in rows
     assert any(note.startswith("potential flow: not available") for note in comparison.notes)
@@ -193,11 +198,7 @@ def test_a_model_that_cannot_be_computed_says_why(tmp_path, potential):
     def capsizes(case, duration):
         raise InputError("--model cummins: roll capsizes (GM = -0.01 m)")
 
-    case = fake_case(tmp_path)
-    t = np.arange(0.0, 3.0, 2e-3)
-    write_run(tmp_path / "build", case.name, "coarse", t, z=synthetic_decay(t, 0.0254, -0.001))
-    comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY,
-                              potential=potential, model=capsizes)
+    comparison = coarse_comparison(tmp_path, potential, capsizes)
     rows = rows_by_source(comparison)
     assert rows[MODEL]["note"] == "not computed: --model cummins: roll capsizes (GM = -0.01 m)"
     assert any(n.startswith(f"{MODEL}: not computed") for n in comparison.notes)

@@ -271,11 +271,11 @@ def test_smaller_steps_is_another_run():
 
 
 def test_a_setting_added_later_leaves_the_runs_before_it():
-    """A field marked ``added`` (mesh.gmsh.layers_height_3d and run.motion_diffusivity,
-    2026-12-03) is out of the stamp at its default, written out or not, and one at its
-    ``inert`` value (0 prism layers) too, so the runs made before they existed keep theirs.
-    The layers a body given by triangles takes by default (3 since 2026-12-03) are in it: its
-    runs made without them are of other settings."""
+    """A field marked ``added`` (mesh.gmsh.layers_height_3d and run.motion_diffusivity) is
+    out of the stamp at its default, written out or not, and one at its ``inert`` value (0
+    prism layers) too, so the runs made before they existed keep theirs. The layers a body
+    given by triangles takes by default (3) are in it: its runs made without them are of
+    other settings."""
     from floatfoam.settings import TRIANGLE_LAYERS, stamped
 
     heave = load_case("cylinder_heave")
