@@ -24,7 +24,7 @@ CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cy
 	parabolic_cylinder hyperbolic_cylinder box_bilge box_bilge_heave sphere sphere_25mm sphere_50mm \
 	ellipsoid_roll ellipsoid_pitch ellipsoid ellipsoid_printed_verdict stl_pontoon superellipsoid_buoy lab_sphere \
 	lab_sphere_03D lab_sphere_05D \
-	flume_section_roll flume_section_heave
+	flume_section_roll flume_section_roll_sway_held flume_section_heave
 .PHONY: $(CFD_CASES) help setup run test test-extended mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures bench-theory bench-potential bench-cfd clean
 
 help:  ## list the targets

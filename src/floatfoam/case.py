@@ -24,7 +24,7 @@ import numpy as np
 
 from floatfoam import settings
 from floatfoam.bodies import shapes
-from floatfoam.dofs import RELEASE_KEYS
+from floatfoam.dofs import RELEASE_KEYS, check_free
 from floatfoam.errors import InputError, is_number, number
 from floatfoam.layout import CASES_DIR, list_cases
 
@@ -407,6 +407,7 @@ def _build(folder: Path, cfg: dict) -> Case:
             raise InputError(f"reference.{key} = {entry!r}: valid is a table with file (a CSV "
                              f"beside case.toml, in {folder}) and source")
     stages = _resolved_layers(settings.parse_settings(cfg), body, cfg["body"].get("shape"))
+    check_free(stages.motion.free, release)
     tank_depth = stages.domain.depth
     if math.isfinite(depth) and tank_depth is not None and abs(tank_depth - depth) > 1e-9 * depth:
         raise InputError(f"domain.depth = {tank_depth!r} differs from fluid.depth = {depth!r}: "

@@ -74,16 +74,30 @@ def released(release: dict) -> list[Dof]:
     return [d for d in DOFS if float(release.get(d.release_key, 0.0) or 0.0) != 0.0]
 
 
-def free_dofs(release: dict, *, axisymmetric: bool = False) -> list[Dof]:
-    """The DoFs a body released in a fluid moves in — those the CFD leaves free
-    (:func:`floatfoam.foam.render.constraints`): heave always; sway and roll after a heel;
+def free_dofs(release: dict, *, axisymmetric: bool = False, chosen=None) -> list[Dof]:
+    """The DoFs the body is free in, in the CFD (:func:`floatfoam.foam.render.constraints`) and
+    the models alike: ``chosen`` (names, ``[motion] free``: as a rig holds a model) when given,
+    else those a body released in a fluid moves in: heave always; sway and roll after a heel;
     surge and pitch after a trim; heave alone for a body of revolution in heave (a wedge)."""
+    if chosen is not None:
+        return sorted((_BY_NAME[n] for n in chosen), key=lambda d: d.index)
     heel = float(release.get("heel", 0.0) or 0.0) != 0.0
     trim = float(release.get("trim", 0.0) or 0.0) != 0.0
     names = ["heave"]
     if not axisymmetric:
         names += ["roll", PARTNER["roll"]] * heel + ["pitch", PARTNER["pitch"]] * trim
     return sorted((_BY_NAME[n] for n in names), key=lambda d: d.index)
+
+
+def check_free(chosen, release: dict) -> None:
+    """An InputError naming ``motion.free`` when it holds a DoF the release displaces."""
+    if chosen is None:
+        return
+    held = [d.name for d in released(release) if d.name not in chosen]
+    if held:
+        raise InputError(f"motion.free = {list(chosen)!r}: the release displaces "
+                         f"{', '.join(held)}, which it holds; valid lists include "
+                         f"{', '.join(d.name for d in released(release))}")
 
 
 def parse_dofs(text: str) -> list[Dof]:

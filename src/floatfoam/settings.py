@@ -1,17 +1,18 @@
 """The tables of a case file that stages read, as typed, frozen settings validated once.
 
-``[run]``, ``[mesh]`` (with ``[mesh.gmsh]``), ``[domain]`` and ``[potential]`` each become a
-frozen dataclass when the case is loaded (:func:`parse_settings`): an unknown key is refused with
-the valid ones and a "did you mean", a boolean must be a TOML boolean, every number is checked
-against its range and the relations between numbers are checked (inner < outer distance, write
-interval ≤ end time, ω_min < ω_max). Stages read :class:`Settings`, never the raw TOML.
+``[run]``, ``[mesh]`` (with ``[mesh.gmsh]``), ``[domain]``, ``[potential]`` and ``[motion]``
+each become a frozen dataclass when the case is loaded (:func:`parse_settings`): an unknown key
+is refused with the valid ones and a "did you mean", a boolean must be a TOML boolean, every
+number is checked against its range and the relations between numbers are checked (inner <
+outer distance, write interval ≤ end time, ω_min < ω_max). Stages read :class:`Settings`,
+never the raw TOML.
 
 A field's range is in its metadata: ``minimum`` (exclusive unless ``closed``), ``maximum``
-(inclusive), ``kind`` (float, int, bool, str); ``added`` marks a field added after runs were
-made whose default leaves them as they were, ``inert`` the value at which a field changes
-nothing, ``extent`` a field that says only how far a run goes (run.end_time: a longer one
-continues the run, :mod:`floatfoam.foam.extension`); :func:`stamped` leaves all three out of a
-run's stamp.
+(inclusive), ``kind`` (float, int, bool, str, or tuple: a list of names); ``added`` marks a
+field (or a whole table) added after runs were made whose default leaves them as they were,
+``inert`` the value at which a field changes nothing, ``extent`` a field that says only how far
+a run goes (run.end_time: a longer one continues the run, :mod:`floatfoam.foam.extension`);
+:func:`stamped` leaves all three out of a run's stamp.
 """
 
 from __future__ import annotations
@@ -71,7 +72,9 @@ def stamped(settings) -> dict:
     for item in fields(settings):
         value = getattr(settings, item.name)
         if hasattr(value, "__dataclass_fields__"):
-            out[item.name] = stamped(value)
+            inner = stamped(value)
+            if inner or not item.metadata.get("added"):  # an added table at its defaults
+                out[item.name] = inner  # is left out whole
         elif not ((item.metadata.get("added") and value == item.default)
                   or _is_inert(value, item.metadata.get("inert", _NONE))
                   or item.metadata.get("extent")):
@@ -265,6 +268,28 @@ class PotentialSettings:
 
 
 @dataclass(frozen=True)
+class MotionSettings:
+    """``[motion]``: the DoFs the body is free in, in the CFD and in the models alike, as a rig
+    holds a model (a roll-only rig: ``free = ["roll"]``, about a fixed axis through G); absent,
+    those a body released in a fluid moves in (:func:`floatfoam.dofs.free_dofs`)."""
+
+    free: tuple[str, ...] | None = _spec(None, kind=tuple, added=True,
+                                         doc="names among heave, roll, pitch, surge, sway; "
+                                         "the released ones must be in it")
+
+    def check(self) -> None:
+        from floatfoam.dofs import COUPLED_NAMES
+
+        for name in self.free or ():
+            if name not in COUPLED_NAMES:
+                raise InputError(f"motion.free = {list(self.free)!r}: {name!r} is not a DoF; "
+                                 f"valid names are {', '.join(COUPLED_NAMES)}")
+        if self.free is not None and len(set(self.free)) != len(self.free):
+            raise InputError(f"motion.free = {list(self.free)!r}: a DoF is named twice; valid "
+                             "is each at most once")
+
+
+@dataclass(frozen=True)
 class Settings:
     """The settings of every stage of a case."""
 
@@ -272,10 +297,11 @@ class Settings:
     mesh: MeshSettings = field(default_factory=MeshSettings)
     domain: DomainSettings = field(default_factory=DomainSettings)
     potential: PotentialSettings = field(default_factory=PotentialSettings)
+    motion: MotionSettings = field(default_factory=MotionSettings, metadata={"added": True})
 
 
 TABLES = {"run": RunSettings, "mesh": MeshSettings, "domain": DomainSettings,
-          "potential": PotentialSettings}
+          "potential": PotentialSettings, "motion": MotionSettings}
 
 
 def keys(cls) -> list[str]:
@@ -302,6 +328,12 @@ def _value(value, name: str, meta: dict):
         if not isinstance(value, str) or not value:
             raise InputError(f"{name} = {value!r}: valid is a non-empty string")
         return value
+    if kind is tuple:
+        if not (isinstance(value, list) and value
+                and all(isinstance(v, str) and v for v in value)):
+            raise InputError(f"{name} = {value!r}: valid is a non-empty list of names, "
+                             f"e.g. [\"heave\", \"roll\"]")
+        return tuple(value)
     low = meta["minimum"]
     result = number(value, name, minimum=None if meta["closed"] else low,
                     integer=kind is int)

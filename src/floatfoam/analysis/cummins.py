@@ -2,14 +2,14 @@
 
 Cummins (1962) with the potential flow's A∞ and radiation memory
 (:func:`floatfoam.potential.models.decay_series`, ``floatfoam decay-model --model cummins``),
-solved in the DoFs the CFD body is free in (:func:`floatfoam.dofs.free_dofs`: sway follows a
-roll, surge a pitch), with the exact hydrostatic restoring force where the release is large
-(:data:`~floatfoam.potential.models.LARGE_RELEASE`), else C x. Its series is analysed as a CFD
-record is (:func:`~floatfoam.analysis.decay.analyse_decay`, the same options, over the CFD
-record's span), so that its T_d and ζ are the ones the CFD's are set against: the comparison's
-Δ columns (:mod:`floatfoam.analysis.compare`) and the decay figure
-(:mod:`floatfoam.analysis.plots`). The linear theory (no added mass, no damping) stays beside
-them as a row and a thin line.
+solved in the DoFs the CFD body is free in (:func:`floatfoam.dofs.free_dofs`: the case's
+``[motion] free``, else sway follows a roll, surge a pitch), with the exact hydrostatic restoring
+force where the release is large (:data:`~floatfoam.potential.models.LARGE_RELEASE`), else C x. Its
+series is analysed as a CFD record is (:func:`~floatfoam.analysis.decay.analyse_decay`, the same
+options, over the CFD record's span), so that its T_d and ζ are the ones the CFD's are set against:
+the comparison's Δ columns (:mod:`floatfoam.analysis.compare`) and the decay figure
+(:mod:`floatfoam.analysis.plots`). The linear theory (no added mass, no damping) stays beside them
+as a row and a thin line.
 """
 
 from __future__ import annotations

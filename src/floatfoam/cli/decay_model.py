@@ -27,8 +27,9 @@ def register(sub) -> None:
                    help="cummins: exact hydrostatic restoring instead of C x")
     p.add_argument("--dofs", default=None, metavar="LIST",
                    help="cummins: the DoFs solved, e.g. heave,roll (roll about G alone) or "
-                        "heave,roll,sway; default those a free body moves in after the "
-                        "release (sway with a heel, surge with a trim), as in the CFD")
+                        "heave,roll,sway; default the case's [motion] free, else those a free "
+                        "body moves in after the release (sway with a heel, surge with a "
+                        "trim), as in the CFD")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 

@@ -101,6 +101,7 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
     kind = default_kind(case, release)
     check_layers(case, kind)
     plane = half_plane(case, release) if kind == "3d-half" else None
+    check_free_in(case, kind, plane)
     box = tank(case)
     share = {"2d": box.thickness / (case.body.length or box.thickness),
              "wedge": _wedge_angle() / 360.0, "3d": 1.0, "3d-half": 0.5}[kind]
@@ -351,8 +352,33 @@ def _check_square(case: Case, grid: OGrid) -> None:
                      f"at least as large as the square's; {release} fits this square")
 
 
+#: the DoFs a body can move in in each domain: a 2D slab (x one cell thick) and a half domain
+#: with its symmetry plane x = 0 keep the (y, z) plane, one with y = 0 the (x, z) plane, a
+#: wedge its axis
+MOVABLE = {"2d": ("heave", "roll", "sway"), "ogrid": ("heave", "roll", "sway"),
+           "wedge": ("heave",), "3d-half x": ("heave", "roll", "sway"),
+           "3d-half y": ("heave", "pitch", "surge"),
+           "3d": ("heave", "roll", "pitch", "surge", "sway")}
+
+
+def check_free_in(case: Case, kind: str, plane: str | None = None) -> None:
+    """An InputError naming ``motion.free`` when it frees a DoF the run's domain cannot move
+    the body in (:data:`MOVABLE`), before anything is written."""
+    free = case.settings.motion.free
+    movable = MOVABLE[f"{kind} {plane}" if plane else kind]
+    out = [name for name in free or () if name not in movable]
+    if out:
+        where = {"2d": "a 2D slab", "ogrid": "a 2D O-grid", "wedge": "a wedge (axisymmetric)",
+                 "3d-half": f"a half domain (symmetry plane {plane} = 0)",
+                 "3d": "a 3D domain"}[kind]
+        raise InputError(f"motion.free = {list(free)!r}: {case.name} is meshed in {where}, "
+                         f"where the body cannot move in {', '.join(out)}; valid names are "
+                         f"{', '.join(movable)}")
+
+
 def _ogrid_plan(case: Case, level: str, release: Pose, local: bool) -> RunMesh:
     body = case.body
+    check_free_in(case, "ogrid")
     if not (isinstance(body, EllipticCylinder) and body.b == body.c):
         raise InputError(f"mesh.mesher = \"ogrid\" for case {case.name!r}: the O-grid is for a "
                          "circular_cylinder; valid for this body is mesh.mesher = \"gmsh\"")

@@ -67,7 +67,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
                    if k not in ("title", "description", "extends")}
     for table in settings.TABLES:  # a key the stamp leaves out (0 prism layers, written out)
         if isinstance(raw.get(table), dict):  # is left out of the file's copy too
-            kept = _stamped_keys(raw[table], stamp[table])
+            kept = _stamped_keys(raw[table], stamp.get(table, {}))
             if kept or not raw[table]:
                 raw[table] = kept
             else:  # emptied by it: as if never written

@@ -7,6 +7,12 @@ from its last written time: its rows replace those of the interrupted run after 
 the new ones and must go).
 The file is never rewritten in place: a new version is written beside it and renamed over it,
 so an interrupt cannot leave it empty or cut.
+
+The log is the motion's one source. v1912's ``sixDoFRigidBodyState`` function object is not
+written: it reads the six-DoF motion *solver*, which the Laplacian route does not have (the
+body's six-DoF equations live in its point displacement condition there), so it would serve
+one route of two; the log carries the state on both, step by step, as the progress line reads
+it.
 """
 
 from __future__ import annotations

@@ -166,11 +166,6 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
         pimple["PIMPLE"]["correctPhi"] = False
         pimple["PIMPLE"]["nOuterCorrectors"] = 1
         return
-    if mesh.motion != "distances":  # the function object reads the six-DoF motion solver
-        return
-    control["functions"]["motion"] = {"type": "sixDoFRigidBodyState",
-                                      "libs": ['"libsixDoFRigidBodyState.so"'],
-                                      "angleFormat": "degrees"}
 
 
 def _solution(case: Case, run_dir: Path, mesh: RunMesh) -> None:
@@ -193,23 +188,40 @@ def _fluid(case: Case, run_dir: Path) -> None:
                  "value": [0.0, 0.0, -case.g]}, cls="uniformDimensionedVectorField")
 
 
+#: the axes of the translations and rotations v1912's six-DoF constraints hold
+TRANSLATIONS = {"surge": [1.0, 0.0, 0.0], "sway": [0.0, 1.0, 0.0], "heave": [0.0, 0.0, 1.0]}
+ROTATIONS = {"roll": [1.0, 0.0, 0.0], "pitch": [0.0, 1.0, 0.0]}
+
+
 def constraints(case: Case, mesh: RunMesh, cog: list[float]) -> dict:
-    """The six-DoF constraints of the motion the release excites (:func:`floatfoam.dofs.free_dofs`,
-    which the potential-flow models share): heave alone (a line and a fixed orientation) for a
-    pure heave release and always in a wedge; heave, sway and roll in the (y, z) plane for a
-    heel; heave, surge and pitch in the (x, z) plane for a trim (3D); none when both are
-    released (3D)."""
-    free = {d.name for d in free_dofs(case.release, axisymmetric=mesh.kind == "wedge")}
-    if free == {"heave"}:
-        return {"heaveOnly": {"sixDoFRigidBodyMotionConstraint": "line",
-                              "centreOfRotation": cog, "direction": [0.0, 0.0, 1.0]},
-                "noRotation": {"sixDoFRigidBodyMotionConstraint": "orientation"}}
-    if "roll" in free and "pitch" in free:
-        return {}
-    axis = [1.0, 0.0, 0.0] if "roll" in free else [0.0, 1.0, 0.0]
-    return {"inPlane": {"sixDoFRigidBodyMotionConstraint": "plane", "centreOfRotation": cog,
-                        "normal": axis},
-            "oneAxis": {"sixDoFRigidBodyMotionConstraint": "axis", "axis": axis}}
+    """The six-DoF constraints that leave the body free in the DoFs of
+    :func:`floatfoam.dofs.free_dofs` (``[motion] free``, else those the release excites; the
+    potential-flow models take the same). v1912's constraints (src/sixDoFRigidBodyMotion/
+    sixDoFRigidBodyMotion/constraints): G, the centre of rotation, is held at a ``point``
+    (no translation free), on a ``line`` (one), in a ``plane`` (two) or not at all (three);
+    the attitude by ``orientation`` (no rotation free), about an ``axis`` (roll or pitch), or
+    not at all (both, and yaw with them: no v1912 constraint holds yaw alone)."""
+    free = {d.name for d in free_dofs(case.release, axisymmetric=mesh.kind == "wedge",
+                                      chosen=case.settings.motion.free)}
+    moving = [name for name in TRANSLATIONS if name in free]
+    held = [name for name in TRANSLATIONS if name not in free]
+    out = {}
+    if not moving:
+        out["fixedPoint"] = {"sixDoFRigidBodyMotionConstraint": "point",
+                             "centreOfRotation": cog}
+    elif len(moving) == 1:
+        out[f"{moving[0]}Only"] = {"sixDoFRigidBodyMotionConstraint": "line",
+                                   "centreOfRotation": cog, "direction": TRANSLATIONS[moving[0]]}
+    elif len(moving) == 2:
+        out["inPlane"] = {"sixDoFRigidBodyMotionConstraint": "plane", "centreOfRotation": cog,
+                          "normal": TRANSLATIONS[held[0]]}
+    turning = [name for name in ROTATIONS if name in free]
+    if not turning:
+        out["noRotation"] = {"sixDoFRigidBodyMotionConstraint": "orientation"}
+    elif len(turning) == 1:
+        out["oneAxis"] = {"sixDoFRigidBodyMotionConstraint": "axis",
+                          "axis": ROTATIONS[turning[0]]}
+    return out
 
 
 def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | None:

@@ -28,22 +28,29 @@ def default_kind(case, where: Pose) -> str:
     """The lightest domain that represents the case at this pose."""
     if case.body.is_section and where.trim == 0.0:
         return "2d"
-    if sections.is_axisymmetric(case.body) and where.heel == 0.0 and where.trim == 0.0:
+    if sections.is_axisymmetric(case.body) and where.heel == 0.0 and where.trim == 0.0 \
+            and _frees_only(case, ("heave",)):
         return "wedge"
     return "3d-half" if half_plane(case, where) else "3d"
 
 
+def _frees_only(case, names) -> bool:
+    """``[motion] free`` (when given) names none but ``names``."""
+    return all(name in names for name in case.settings.motion.free or ())
+
+
 def half_plane(case, where: Pose) -> str | None:
-    """The symmetry plane the body and its motion keep, "x" (x = 0: no trim) or "y" (y = 0:
-    no heel), for a primitive solid symmetric about both (ellipsoid, sphere) with G on it;
-    None otherwise."""
+    """The symmetry plane the body and its motion keep, "x" (x = 0: no trim, no DoF freed
+    out of the (y, z) plane) or "y" (y = 0: no heel, none out of the (x, z) plane), for a
+    primitive solid symmetric about both (ellipsoid, sphere) with G on it; None otherwise."""
     from floatfoam.bodies.shapes import Ellipsoid
 
     if not isinstance(case.body, Ellipsoid):
         return None
-    if where.trim == 0.0 and case.cog[0] == 0.0:
+    if where.trim == 0.0 and case.cog[0] == 0.0 and _frees_only(case, ("heave", "roll", "sway")):
         return "x"
-    if where.heel == 0.0 and case.cog[1] == 0.0:
+    if where.heel == 0.0 and case.cog[1] == 0.0 and _frees_only(case, ("heave", "pitch",
+                                                                       "surge")):
         return "y"
     return None
 

@@ -199,7 +199,8 @@ def _cummins(case, eq, g_pos, stiffness, x0, t, nonlinear_restoring, coefficient
     from floatfoam.potential.resonance import mass_matrix
     from floatfoam.potential.timedomain import cummins_decay, retardation_kernel
 
-    chosen = list(dofs) if dofs is not None else free_dofs(case.release)
+    chosen = list(dofs) if dofs is not None else free_dofs(
+        case.release, chosen=case.settings.motion.free)
     missing = [d.name for d in released(case.release) if d not in chosen]
     if missing:
         raise InputError(f"--dofs {','.join(d.name for d in chosen)}: the release displaces "
