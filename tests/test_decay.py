@@ -241,7 +241,7 @@ def test_cli_table_and_errors(tmp_path, capsys):
     assert "damped period T_d" in out and "damping ratio" in out
     with pytest.raises(InputError, match="--equilibrium 'x'"):
         _cli([str(tmp_path), "--equilibrium", "x"])
-    with pytest.raises(InputError, match="neither a motion CSV nor a directory"):
+    with pytest.raises(InputError, match="neither a motion CSV, a run folder nor a case"):
         _cli([str(tmp_path / "missing")])
     (tmp_path / "nan").mkdir()
     (tmp_path / "nan" / "motion.csv").write_text(

@@ -324,7 +324,14 @@ def case_pictures(case_name: str, level: str, build=None, *, colour="velocity",
     """
     if level not in layout.LEVELS:
         raise InputError(f"--level {level!r}: valid levels are {', '.join(layout.LEVELS)}")
-    run_dir = layout.run_dir(case_name, level, build)
+    return run_pictures(layout.run_dir(case_name, level, build), colour=colour, times=times)
+
+
+def run_pictures(run_dir, *, colour="velocity", times=None) -> list[tuple[Path, str]]:
+    """:func:`case_pictures` of the run in ``run_dir`` (``<build>/<case>/<run>``), in
+    ``<build>/<case>/pictures/<run>/``."""
+    run_dir = Path(run_dir)
+    case_name, level = run_dir.parent.name, run_dir.name
     if not layout.is_finished(run_dir):
         raise InputError(f"{case_name} --level {level}: no finished run in {run_dir}; valid is "
                          f"a finished run (floatfoam run {case_name} --level {level})")
@@ -332,7 +339,7 @@ def case_pictures(case_name: str, level: str, build=None, *, colour="velocity",
     run = open_run(run_dir)
     for t in times or ():  # every time checked before anything is written
         nearest(run, float(t), name="--times")
-    out = layout.case_build_dir(case_name, build) / "pictures" / level
+    out = run_dir.parent / "pictures" / level
     label = f"{case_name}/{level}"
     what = "speed" if colour == "velocity" else "vorticity normal to the section"
     pairs = [(p, f"{label}: free surface (black line), body (grey) and water coloured by its "

@@ -1,4 +1,5 @@
-"""``floatfoam analyse RUN_DIR_OR_CSV``: period and damping of one free-decay record.
+"""``floatfoam analyse RUN_OR_CSV``: period and damping of one free-decay record (RUN: a run
+folder or a CASE with ``--level``, :func:`floatfoam.cli.common.resolve_run`).
 
 The DoF is ``--dof``'s, else the DoF(s) the run released, else, for a CSV that is no run's,
 the one that moves most (:func:`floatfoam.analysis.released.choose`, which also refuses a DoF
@@ -15,13 +16,12 @@ import sys
 from pathlib import Path
 
 from floatfoam import dofs
-from floatfoam.cli.common import dump_json
+from floatfoam.cli.common import add_run_argument, dump_json, resolve_run
 
 
 def add_arguments(parser) -> None:
     """The analyse command's arguments (shared with postprocess/analyse.py)."""
-    parser.add_argument("source", metavar="RUN_DIR_OR_CSV",
-                        help="a run directory holding motion.csv, or a motion CSV")
+    add_run_argument(parser, csv=True)
     parser.add_argument("--dof", choices=list(dofs.NAMES), default=None,
                         help="degree of freedom to analyse (default: the DoF(s) the run "
                              "released, from its .floatfoam/info.json; for a CSV that is no "
@@ -71,7 +71,7 @@ def run(args) -> int:
     from floatfoam.errors import InputError
     from floatfoam.motion import motion_path, read_motion
 
-    path = motion_path(args.source)
+    path = motion_path(resolve_run(args.run, args.level, csv=True))
     motion = read_motion(path)
     choice = choose(path, motion, args.dof)
     if choice.released is not None and args.dof and args.dof not in choice.released:

@@ -63,16 +63,16 @@ def check_export(run_dir: Path, *, force: bool = False) -> Path:
     run = Path(run_dir)
     info = run / layout.MARKERS / "info.json"
     if not (run / "system" / "controlDict").is_file() or not info.is_file():
-        raise InputError(f"RUN_DIR {run}: no run of floatfoam run (no system/controlDict and "
+        raise InputError(f"RUN {run}: no run of floatfoam run (no system/controlDict and "
                          f"{layout.MARKERS}/info.json); valid is a run folder, "
                          "<build>/<case>/<level>")
     if not layout.is_finished(run):
-        raise InputError(f"RUN_DIR {run}: the run is not finished; valid is a finished run "
+        raise InputError(f"RUN {run}: the run is not finished; valid is a finished run "
                          "(the same `floatfoam run` command resumes it; ParaView opens an "
                          "unfinished one by its .foam file)")
     out = run / VTK_DIR
     if out.exists() and not force:
-        raise InputError(f"RUN_DIR {run}: {out} exists and is never overwritten; valid is "
+        raise InputError(f"RUN {run}: {out} exists and is never overwritten; valid is "
                          "--force to replace it, or moving it away first")
     return out
 
