@@ -25,7 +25,7 @@ CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cy
 	ellipsoid_roll ellipsoid_pitch ellipsoid ellipsoid_printed_verdict stl_pontoon superellipsoid_buoy lab_sphere \
 	lab_sphere_03D lab_sphere_05D \
 	flume_section_roll flume_section_roll_sway_held flume_section_heave
-.PHONY: $(CFD_CASES) help setup run test test-extended mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures bench-theory bench-potential bench-cfd clean
+.PHONY: $(CFD_CASES) help setup run test test-extended mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures docs bench-theory bench-potential bench-cfd clean
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
@@ -79,6 +79,9 @@ mesh-table: setup  ## mesh levels table (Markdown) of every case, with checkMesh
 
 report: setup  ## gather every case (theory, potential flow, finished CFD runs) into build/report/
 	$(FF) report
+
+docs: setup  ## the documentation site (MkDocs Material, warnings are errors) in build/docs/site/
+	$(PY) -m floatfoam.docsite
 
 validate: setup  ## grid + time-step convergence (GCI) of CASE: coarse, medium, fine, medium with dt/2, coarse with its mesh motion spread (TIME_LEVEL=fine: fine with dt/2; MORPHING=F: the distances × F, default 1.5, or the Laplacian's 1/d; MORPHING=no: not run)
 	$(FF) validate $(CASE) $(NPARGS) --time-level $(TIME_LEVEL) $(if $(filter no,$(MORPHING)),--no-morphing,$(if $(MORPHING),--morphing $(MORPHING))) $(SETARGS)

@@ -54,6 +54,38 @@ SCHEMA = {
     "reference": None,
     **{table: set(settings.keys(cls)) for table, cls in settings.TABLES.items()},
 }
+# What each key of the tables above the stages' means, with its unit (the stages' keys carry
+# theirs in floatfoam.settings); the documentation's reference is generated from both.
+KEY_DOCS = {
+    "case": {"title": "a one-line title (text)", "description": "what the case is (text)",
+             "extends": "the name of a case whose tables this one takes, changing what it sets"},
+    "body": {
+        "shape": "one of " + ", ".join(SHAPES),
+        "radius": "m: circular_cylinder, sphere", "length": "m along x: the 2D sections "
+        "(volumes, areas and masses are for this length)",
+        "half_beam": "m: elliptic_cylinder, parabolic_cylinder (half the width at the deck)",
+        "half_height": "m: elliptic_cylinder", "height": "m, keel to deck: "
+        "parabolic_cylinder, conic_cylinder, box", "n": "m: conic_cylinder, y² = n·x + m·x²",
+        "m": "conic_cylinder's m (dimensionless): < 0 ellipse, 0 parabola, > 0 hyperbola",
+        "beam": "m: box", "bilge_radius": "m: box (optional, default 0: sharp bilges)",
+        "semi_axes": "[a, b, c] in m: ellipsoid",
+        "expression": "implicit: F(x, y, z) in m, negative inside",
+        "bounds": "implicit: [[x0, y0, z0], [x1, y1, z1]] in m, a box holding the body",
+        "resolution": "implicit: marching-cubes points per side (optional)",
+        "path": "stl: the STL file, relative to case.toml", "scale": "stl: factor to metres "
+        "(optional, default 1)"},
+    "mass": {"mass": "kg (or density): the body's mass, for a 2D section per its length",
+             "density": "kg/m³ (or mass): a homogeneous body's",
+             "cog": "[x, y, z] in m: the centre of gravity G from the body's geometric centre",
+             "gyradius": "[kx, ky, kz] in m: radii of gyration about axes through G"},
+    "fluid": {"rho": "kg/m³, water (default 1000)", "nu": "m²/s, water (default 1e-6)",
+              "g": "m/s² (default 9.81)", "depth": "m, the water's depth (default inf: deep)",
+              "rho_air": "kg/m³ (default 1)", "nu_air": "m²/s (default 1.48e-5)"},
+    "release": {"heave": "m above the equilibrium", "heel": "degrees from the equilibrium "
+                "attitude, −180 < heel ≤ 180", "trim": "degrees, −90 ≤ trim ≤ 90"},
+    "reference": {"<name>": "a measurement: {value, uncertainty, source}, or a record "
+                  "<name>_record = {file, source} (a CSV beside case.toml)"},
+}
 IMPLICIT_BYTES_PER_POINT = 32  # marching cubes input: F and the x, y, z grids, float64
 MAX_RESOLUTION = 400  # 400³ points take ~2 GiB
 DEFAULTS = {
