@@ -1,21 +1,21 @@
 """make test's time step for the CFD tests that allow it (tests/test_cfd_bodies.py,
 tests/test_cfd.py): the step and the measured changes it makes, in one place."""
 
-# Courant 1 in the bulk and 0.5 at the interface (as the 3D cases, the capsizing ellipse and,
-# since 2026-12-02, box_bilge's and elliptic_cylinder_roll's runs; the other cases' own runs
-# hold 0.5 everywhere), steps up to 10 ms. On the sections the bulk Courant number, not the
+# Courant 1 in the bulk and 0.5 at the interface (as the own runs of the 3D cases, the
+# capsizing ellipse, box_bilge and elliptic_cylinder_roll; the other cases' own runs hold 0.5
+# everywhere), steps up to 10 ms. On the sections the bulk Courant number, not the
 # interface's, held the step: the air's spurious currents above the free surface
 # (cases/box_bilge/README.md).
 #
 # Measured on the 2D sections' whole coarse records, against Courant 0.5 everywhere (2 ranks,
-# 2026-12-01): 38–55 % fewer steps and solver time (box_bilge roll 1,181 → 732 steps, clock
+# relaxation 0.7): 38–55 % fewer steps and solver time (box_bilge roll 1,181 → 732 steps, clock
 # 180 → 103 s; elliptic heave 577 → 301, 63 → 33 s); the periods the tests check moved by at
 # most 0.9 % (the heave periods from the extrema: box +0.76 %, ellipse +0.88 %, parabola
 # +0.04 %; the roll T_d: box +0.01 %, ellipse −0.07 %, hyperbola −0.21 %), the settled level by
 # ≤ 0.05 mm; ζ, not checked there, by −2 to +13 %.
 #
 # On make test's heave records of the O-grid cylinder (1.6 s) and the spheres' wedges (1.7 s),
-# 2 ranks, 2026-12-02 (the case's own step → this one): cylinder_heave 349 → 193 steps, 49.7 →
+# 2 ranks, relaxation 0.7 (the case's own step → this one): cylinder_heave 349 → 193 steps, 49.7 →
 # 26.2 s of run, T_d 0.6146 → 0.6189 s (Cummins 0.6224 s: −1.26 → −0.56 %), fitted level
 # −0.29 → −0.30 mm, ζ 0.141 → 0.155; sphere (10 mm) 356 → 192 steps, 30.9 → 16.4 s, T_d
 # +0.13 % of Cummins' both, level −0.26 mm both; sphere_25mm 358 → 194 steps, 26.0 → 18.6 s,

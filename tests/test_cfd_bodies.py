@@ -109,10 +109,10 @@ def analysed(motion, name: str) -> dict:
 # (the faster sections' fourth extremum comes by 1.56 s, and the mean of the last second is
 # then within 0.04 mm of the equilibrium on the ellipse's coarse record and within 0.24 % of
 # the draft on Cummins' parabola; the box's fourth comes at ~1.8 s: its coarse whole record of
-# the 2D study cut at 2.0 s gives the same extrema period as cut at 2.5 s, make test's end
-# until 2026-12-03, +0.16 % from Cummins', and the last second's mean +0.23 % of the draft
-# from the equilibrium, against +0.41 %); the cases' own records run on until the swing is
-# below 1 % of the release.
+# the 2D study cut at 2.0 s gives the same extrema period as cut at 2.5 s, +0.16 % from
+# Cummins', and the last second's mean +0.23 % of the draft from the equilibrium, against
+# +0.41 % at 2.5 s); the cases' own records run on until the swing is below 1 % of the
+# release.
 HEAVE_RECORDS = {"elliptic_cylinder": 2.0, "box_bilge_heave": 2.0, "parabolic_cylinder": 2.0}
 
 
@@ -126,8 +126,8 @@ def test_section_heave(tmp_path, name):
     first four extrema. Measured on make test's records and step (FAST_STEP): ellipse CFD
     0.760 s against Cummins' 0.763 s (−0.4 %), extrema at 0.42/0.82/1.18/1.56 s against
     0.419/0.812/1.181/1.563 s; box +0.2 %, parabola +0.2 %. On the finer levels (`make
-    validate`, relaxation 1.0, 2026-12-03) the decay fit's T_d moves by −0.8, −0.6 and −0.5 %
-    from coarse to fine (ellipse, box, parabola) and halving the step by 0.3, 0.4 and 0.1 %;
+    validate`, relaxation 1.0) the decay fit's T_d moves by −0.8, −0.6 and −0.5 % from
+    coarse to fine (ellipse, box, parabola) and halving the step by 0.3, 0.4 and 0.1 %;
     the fine T_d is 0.05 % (box) and 0.6 % (parabola) from Cummins' (the ellipse's 1.5 fitted
     cycles are not its whole-record fit). The coarse level's 0.4 % is thus no luck of the
     mesh; 3 % is the issue's bound, held with room."""
@@ -150,9 +150,8 @@ def test_section_heave(tmp_path, name):
 # cores. The fitted period hardly depends on the record's length: the coarse whole records of
 # the 2D study (relaxation 1.0) cut at these ends give 2.33, 2.11 and 2.21 cycles and periods
 # +1.21 %, −1.84 % and −0.21 % from Cummins' (ellipse, box, hyperbola), against +1.17 %,
-# −1.74 % and −0.04 % cut at the ends make test used until 2026-12-03 (2.7, 4.0 and 2.8 s) and
-# +1.12 %, −1.74 % and +0.05 % at 4.0 s; the last second's mean height moves by ≤ 0.17 % of
-# the draft.
+# −1.74 % and −0.04 % cut at 2.7, 4.0 and 2.8 s and +1.12 %, −1.74 % and +0.05 % at 4.0 s;
+# the last second's mean height moves by ≤ 0.17 % of the draft.
 ROLL_RECORDS = {"elliptic_cylinder_roll": 2.0, "box_bilge": 3.0, "hyperbolic_cylinder": 2.0}
 
 
@@ -189,7 +188,7 @@ def test_section_roll(tmp_path, name):
 
 @pytest.mark.parametrize("name, release, tolerance, step", [
     # 10 % of the draft: the linear range; measured CFD 0.6231 s, Cummins 0.6207 s (+0.4 %;
-    # on the 1.7 s record make test ran until 2026-12-03).
+    # on a 1.7 s record).
     # 3 %: the grid studies (cases/sphere/README.md) put the fine levels +0.20 % ± 0.13 %,
     # −0.41 % ± 2.7 % and −1.6 % ± 0.68 % (10, 25, 50 mm) from Cummins' model, the coarse
     # wedge within 0.8 % of them. make test's step (FAST_STEP) for the two smaller releases
@@ -206,10 +205,10 @@ def test_sphere_heave_from_three_heights(tmp_path, name, release, tolerance, ste
     the draft — and the equilibrium draft within 1 %."""
     # make test: 2.2 periods (1.4 s) of the case's 5 (3.2 s, `make sphere...`). The coarse
     # whole records of the study at relaxation 1.0 cut at 1.4 s (2.23 cycles fitted) against
-    # cut at 1.7 s (make test's end until 2026-12-03, 2.72 cycles): periods +0.71 / +0.74 /
-    # −0.23 % from Cummins' against +0.60 / +0.61 / −0.57 % (10 / 25 / 50 mm), fitted levels
-    # −0.28 / −0.45 / −0.71 mm against −0.26 / −0.42 / −0.80 mm; make test's own runs
-    # (2026-12-03): +0.70 / +0.68 / −0.23 %, −0.29 / −0.49 / −0.71 mm
+    # cut at 1.7 s (2.72 cycles): periods +0.71 / +0.74 / −0.23 % from Cummins' against
+    # +0.60 / +0.61 / −0.57 % (10 / 25 / 50 mm), fitted levels −0.28 / −0.45 / −0.71 mm against
+    # −0.26 / −0.42 / −0.80 mm; make test's own runs: +0.70 / +0.68 / −0.23 %, −0.29 / −0.49 /
+    # −0.71 mm
     case, theory, motion, info = cfd(name, tmp_path, ["run.end_time=1.4", *step])
     assert info["mesh"] == "wedge"
     assert motion["z"][0] - info["z_G_equilibrium"] == pytest.approx(release, abs=1e-6)
@@ -233,7 +232,7 @@ def test_lab_sphere_first_cycle_against_the_basin(tmp_path):
     coarse to fine 0.28 %, the basin's ± 0.07 %, rounded up (the fine level's U_num is 0.28 %,
     at order 2 where the levels' p = 4.1 is no bound). Trough within 1.5 %: the levels move it
     by 0.4 % from coarse to fine, the halved time step by 0.6 %, the basin's ± 0.4 %. (At the
-    morphing distances until 2026-12-01, 0.2/1.2 m, the same coarse numbers to 0.02 %.)"""
+    six-DoF morphing distances 0.2/1.2 m, the same coarse numbers to 0.02 %.)"""
     from floatfoam import layout
     from floatfoam.analysis.compare import reference_entry, settled_level
     from floatfoam.analysis.extrema import crossing_reduction
@@ -324,11 +323,11 @@ def test_triaxial_ellipsoid_roll_3d(tmp_path):
     through its first trough at 0.324 s (the whole 3.6 s, 16 min 40 s, runs under `make
     ellipsoid_roll`; make test's 20 minutes hold no more): stable, the time of the first trough
     (half the period) within 5 % of Cummins' model free in sway, heave and roll as the CFD body
-    (measured 0.3237 s against 0.3237 s, +0.01 %; 0.3241 s on the 0.45 s record make test ran
-    until 2026-12-01), G's sway by then within 10 % (−7.76 mm against −8.34 mm, −7 %; it
-    grows from −9 % at the first crossing, 0.2 s), the draft within 1 %. On the whole record
+    (measured 0.3237 s against 0.3237 s, +0.01 %; 0.3241 s on a 0.45 s record), G's sway by
+    then within 10 % (−7.76 mm against −8.34 mm, −7 %; it grows from −9 % at the first
+    crossing, 0.2 s), the draft within 1 %. On the whole record
     the fitted periods differ by −1.6 % (0.6596 s against 0.6705 s); the roll-only model about
-    G (0.7095 s) was −7.0 % away."""
+    G (0.7095 s) is −7.0 % away."""
     record = 0.35  # a trough 5 % late (0.340 s) is still seen
     case, theory, motion, info = cfd("ellipsoid_roll", tmp_path, [f"run.end_time={record}"])
     assert info["mesh"] == "3d-half"
@@ -357,7 +356,8 @@ def test_triaxial_ellipsoid_pitch_3d(tmp_path):
     of the first crossing within 5 % of Cummins' model free in the same DoFs, as the roll's
     period (measured 0.1588 s against 0.1601 s, −0.8 %), where the memoir's linear model
     without added inertia crosses 15 % earlier (0.1355 s); the draft within 1 %. (With G
-    misplaced on x = 0, the render's error until 2026-12-01, it crossed at 0.1877 s.)"""
+    misplaced on x = 0 instead of where the trim puts it, it crosses at 0.1877 s:
+    tests/test_cfd_setup.py checks G's place.)"""
     record = 0.18
     case, theory, motion, info = cfd("ellipsoid_pitch", tmp_path, [f"run.end_time={record}"])
     assert info["mesh"] == "3d-half"
@@ -375,9 +375,9 @@ def test_triaxial_ellipsoid_pitch_3d(tmp_path):
 def test_a_users_stl_body_rolls_with_its_added_inertia(tmp_path):
     """A body a user brings as an STL file (cases/stl_pontoon: a 1.2 m pontoon of flattened-
     octagon section) heeled 8°, in the whole 3D tank (its STL's flat patches remeshed by gmsh,
-    three prism layers at the body by default since 2026-12-03: 168,484 cells at the coarse
-    level). On a 0.1 s record (the first sixth of a roll period; its whole record, 3.6 s, runs
-    under `make stl_pontoon`): stable, starting at 8°, and falling back as the fluid's inertia
+    three prism layers at the body by default: 168,484 cells at the coarse level). On a 0.1 s
+    record (the first sixth of a roll period; its whole record, 3.6 s, runs under `make
+    stl_pontoon`): stable, starting at 8°, and falling back as the fluid's inertia
     allows — the roll's drop over 0.1 s within 10 % of Cummins' model (measured 2.52° against
     2.39°, +5.4 %, on the whole record's first 0.1 s; without layers 2.54°, +6 %; at release
     the motion is set by the added inertia at infinite frequency), where the body without

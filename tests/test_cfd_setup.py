@@ -190,9 +190,9 @@ def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, mo
 def test_a_trimmed_body_gets_its_own_centre_of_mass(tmp_path, name):
     """The six-DoF centre of mass of a body trimmed at release is G where the trimmed body
     puts it, off x = 0 by −z_G·sin θ from the body's axis (2.6 mm for the ellipsoid, 2.1 mm for
-    the buoy): its righting arm at release is then the theory's GM_pitch·sin θ. Until
-    2026-12-01 the written x was 0, which took 21 % off the ellipsoid's arm and made it
-    oscillate about a trim of 1.05° in CFD."""
+    the buoy): its righting arm at release is then the theory's GM_pitch·sin θ. Written at
+    x = 0, G would take 21 % off the ellipsoid's arm and make it oscillate about a trim of
+    1.05° in CFD."""
     from floatfoam.hydrostatics.immersion import mesh_immersed
     from floatfoam.hydrostatics.theory import theory_summary
     from floatfoam.meshing import body_surface
@@ -209,7 +209,7 @@ def test_a_trimmed_body_gets_its_own_centre_of_mass(tmp_path, name):
         buoyancy = mesh_immersed(vertices, faces, pose.z_c, pose.heel, pose.trim).centroid
         arm = theory_summary(case).dofs["pitch"].metacentric_height * math.sin(trim)
         # measured 12.27 mm against 12.42 mm (−1.2 %: the arm at 5°, of the fine level's
-        # triangles, against the linear theory's); with x = 0 it was 9.66 mm
+        # triangles, against the linear theory's); with G at x = 0 it is 9.66 mm
         assert abs(buoyancy[0] - cog[0]) == pytest.approx(arm, rel=0.02)
 
 

@@ -177,9 +177,10 @@ def test_resume_after_every_write(tmp_path, ranks):
                                              (signal.SIGHUP, 129, "elliptic_cylinder")])
 def test_interrupt_signals_stop_the_solver(tmp_path, sig, code, case):
     """SIGINT and SIGHUP stop driver and solver with one line and remove the driver's meshing
-    folder. The SIGHUP goes to a gmsh-meshed case: until 2026-12-01 gmsh's first initialize
-    had set SIGHUP's and SIGTERM's default actions, which ended such a driver at once, its
-    folder left in TMPDIR (tests/test_meshing.py checks all three handlers)."""
+    folder. The SIGHUP goes to a gmsh-meshed case: gmsh's first initialize sets SIGHUP's and
+    SIGTERM's default actions, which would end such a driver at once, its folder left in
+    TMPDIR, had the driver not put its handlers back (floatfoam.interrupts.handlers_kept;
+    tests/test_meshing.py checks all three handlers)."""
     run_dir = tmp_path / case / "coarse"
     driver = start(tmp_path, case=case)
     wait_until(lambda: (run_dir / "motion.csv").is_file() and processes_in(run_dir), driver)

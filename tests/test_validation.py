@@ -49,8 +49,8 @@ from floatfoam.motion import file_unit, write_motion
 # here; the digits are the table as two independent GCI codes hard-code it, which agree where
 # both give them: columns 1 and 2's cells, φ, p, φ_ext21 and GCI in ORNL/cfd-verify
 # tests/test_regression.py (commit 006c9b7), every column with e_a21 and e_ext21 in another
-# code's tests citing the paper's p. 9 (its repository unnamed by our search index; checked
-# 2026-12-03). Column 2's e_ext21 is left out: the table prints 0.9 %, but its own eq. 5 gives
+# code's tests citing the paper's p. 9 (its repository unnamed by our search index). Column
+# 2's e_ext21 is left out: the table prints 0.9 %, but its own eq. 5 gives
 # |10.8801 − 10.7880| / 10.8801 = 0.847 %, i.e. 0.8 (over φ1 instead, 0.854 %: the likely slip).
 TABLE_1 = [
     # cells, r21 and r32 (3 decimals), values (fine → coarse), p, φ_ext21, e_a21 %, e_ext21 %,
@@ -515,8 +515,8 @@ def test_potential_flow_first_cycles_beside_the_basins(tmp_path):
 
 def test_a_changed_default_makes_a_finished_run_foreign(tmp_path):
     """The stamp holds the values the case file resolves to, defaults included: a finished
-    run made at relaxation 0.7 (the default until 2026-12-02, not written in the case file)
-    is refused, not reused as a run of today's 1.0; the same run at 1.0 is reused."""
+    run made at a default relaxation of 0.7 (not written in the case file) is refused, not
+    reused as a run at the default 1.0; asked for at 0.7 again, it is reused."""
     case = load_case("box_bilge")
     assert "acceleration_relaxation" not in case.raw.get("run", {})
     old = dataclasses.replace(case, settings=dataclasses.replace(
@@ -589,12 +589,11 @@ def test_a_study_is_of_the_settings_its_runs_were_made_with(tmp_path):
 
 def test_the_report_leaves_out_runs_and_a_study_of_other_settings(tmp_path):
     """The report shows a case's CFD runs and its study only when they were made with the
-    case's settings of today. Runs made at relaxation 0.7 (the default until 2026-12-02) and
-    their study are left out, the comparison's notes name them and the summary's status says
-    so. Run again with today's settings (their stamps rewritten here), the runs are shown but
-    the study, made of the old ones, is not until it is made again; a study written before
-    studies recorded their runs' stamps is checked against the folders' stamps. Records
-    synthetic."""
+    case's settings of today. Runs made at a default relaxation of 0.7 (the default is 1.0)
+    and their study are left out, the comparison's notes name them and the summary's status
+    says so. Run again with today's settings (their stamps rewritten here), the runs are shown
+    but the study, made of the old ones, is not until it is made again; a study that holds no
+    stamps of its runs is checked against the folders' stamps. Records synthetic."""
     case = load_case("cylinder_heave")
     old = dataclasses.replace(case, settings=dataclasses.replace(
         case.settings, run=dataclasses.replace(case.settings.run, acceleration_relaxation=0.7)))
@@ -631,7 +630,7 @@ def test_the_report_leaves_out_runs_and_a_study_of_other_settings(tmp_path):
     assert "| heave | CFD coarse |" in md and "Grid and time-step convergence" not in md
     assert "left out, of other settings: the study |" in md
     study = json.loads((folder / "validation.json").read_text())
-    del study["stamps"]  # as written before 2026-12-02: the folders' stamps are today's
+    del study["stamps"]  # a study without its runs' stamps: the folders' stamps are today's
     (folder / "validation.json").write_text(json.dumps(study))
     md = report()
     assert "| cylinder_heave | heave | 5 |" in md and "other settings" not in md

@@ -1,8 +1,8 @@
 """Wetted-surface meshing with the waterline a hair from a ring of vertices (issue 13).
 
-A sphere (or an ellipsoid of revolution) floating within round-off of its equator used to cut
+A sphere (or an ellipsoid of revolution) floating within round-off of its equator can cut
 slivers from the equatorial ring of its icosphere, on which gmsh's surface classification never
-returned: `floatfoam potential sphere --set mass.density=499.99` ran for ever while 500 meshed
+returns: `floatfoam potential sphere --set mass.density=499.99` ran for ever while 500 meshed
 in a second. Each meshing here runs in a child process with a bound, so that a regression fails
 instead of hanging the test run; the bound (120 s) is ~100× the measured meshing time and says
 nothing about speed (that is `make bench-potential`'s).

@@ -31,10 +31,11 @@ from floatfoam.errors import InputError, number
 BYTES_PER_CELL = 2000
 
 # Prism layers at a body given by triangles, in 3D, when the case leaves mesh.gmsh.layers_3d
-# out. Measured 2026-12-03 (coarse, 2 ranks): on the half-immersed sphere meshed in 3D, 3 layers
-# took the first trough from −2.3 % to −0.5 % of the wedge's and its steps from 1,502 to 989;
-# on the superellipsoid buoy's whole record the periods' shortfall against Cummins' halved
-# (heave −5.1 → −3.5 %, roll −2.2 → −1.0 %); 5 layers gave the same (cases/superellipsoid_buoy).
+# out. Measured against no layers (coarse, 2 ranks): on the half-immersed sphere meshed in 3D,
+# 3 layers take the first trough from −2.3 % to −0.5 % of the wedge's and its steps from 1,502
+# to 989; on the superellipsoid buoy's whole record they halve the periods' shortfall against
+# Cummins' (heave −5.1 → −3.5 %, roll −2.2 → −1.0 %); 5 layers give the same
+# (cases/superellipsoid_buoy).
 TRIANGLE_LAYERS = 3
 
 
@@ -118,13 +119,15 @@ class RunSettings:
     end_time: float | None = _spec(None, minimum=0.0, doc="simulated time", extent=True)
     # in the stamp: it sets the written times, which the adjustable time step lands on (the
     # steps themselves), and the times a run restarts from
-    write_interval: float = _spec(0.1, minimum=0.0)
-    max_courant: float = _spec(0.5, minimum=0.0, maximum=5.0)
+    write_interval: float = _spec(0.1, minimum=0.0,
+                                  doc="s between written fields (the last falls on end_time)")
+    max_courant: float = _spec(0.5, minimum=0.0, maximum=5.0,
+                               doc="the largest Courant number the adjustable time step allows")
     max_alpha_courant: float | None = _spec(None, minimum=0.0, maximum=5.0,
                                             doc="at the interface (default: max_courant)")
-    max_delta_t: float = _spec(0.005, minimum=0.0, doc="at the coarse level")
-    # 1 (no relaxation, v1912's own default) since 2026-12-02; 0.7 before left the six-DoF
-    # coupling loop unconverged and the lightly damped rolls' ζ 2–10 % short (docs/coupling.md)
+    max_delta_t: float = _spec(0.005, minimum=0.0, doc="s: the largest time step, at the coarse level")
+    # 1: no relaxation, v1912's own default; 0.7 leaves the six-DoF coupling loop unconverged
+    # and the lightly damped rolls' ζ 2–10 % short (docs/coupling.md)
     acceleration_relaxation: float = _spec(1.0, minimum=0.0, maximum=1.0,
                                            doc="r: each body acceleration = r·new + "
                                            "(1 − r)·previous, in every coupling iteration")
@@ -140,17 +143,24 @@ class RunSettings:
                                     "the body: quadratic (1/d²) or linear (1/d, which spreads "
                                     "the deformation further from the body); the distances "
                                     "ignore it")
-    inner_distance: float | None = _spec(None, minimum=0.0)
-    outer_distance: float | None = _spec(None, minimum=0.0)
+    inner_distance: float | None = _spec(None, minimum=0.0,
+                                         doc="m: the distances' mesh moves rigidly with the body "
+                                             "within it (default: from the body and the tank, "
+                                             "docs/morphing.md)")
+    outer_distance: float | None = _spec(None, minimum=0.0,
+                                         doc="m: and not at all beyond it (default: 0.9 × the room"
+                                             " between the body and the nearest held wall)")
     solver: str | None = _spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
     static_body: bool = _spec(False, kind=bool, doc="hold the body still (still-water test)")
     mesh_pose: str = _spec("release", kind=str, doc="the body's pose the mesh is made at: "
                            "release, or equilibrium (heave releases; moved to the release "
                            "before the first step)")
-    divergence_courant: float = _spec(20.0, minimum=0.0)
-    divergence_body_speed: float = _spec(10.0, minimum=0.0)
-    # Crank–Nicolson ψ 0.9 on box_bilge (2026-12-02): diverged at relaxation 0.7, and at 0.4
-    # the roll gained energy (cases/box_bilge/README.md); the cases keep Euler
+    divergence_courant: float = _spec(20.0, minimum=0.0,
+                                      doc="a Courant number above it stops the run as diverged")
+    divergence_body_speed: float = _spec(10.0, minimum=0.0,
+                                         doc="m/s: a body speed above it stops the run as diverged")
+    # Crank–Nicolson ψ 0.9 on box_bilge diverges at relaxation 0.7, and at 0.4 the roll gains
+    # energy (cases/box_bilge/README.md); the cases keep Euler
     time_scheme: str = _spec("Euler", kind=str, doc="the time derivative's scheme: Euler "
                              "(first order), or \"CrankNicolson ψ\" with 0 ≤ ψ ≤ 1 (second "
                              "order at ψ = 1; any ψ needs the shared fvSolution's "
@@ -186,13 +196,17 @@ class RunSettings:
 class GmshSettings:
     """``[mesh.gmsh]``: sizes of the gmsh meshes at the coarse level (meshing.levels)."""
 
-    body_cells: float = _spec(24, minimum=0.0, maximum=2000)
-    body_cells_3d: float = _spec(12, minimum=0.0, maximum=500)
-    curvature_cells: float = _spec(48, minimum=0.0, maximum=5000)
+    body_cells: float = _spec(24, minimum=0.0, maximum=2000,
+                              doc="cells across the body's smallest dimension on its surface (2D, "
+                                  "wedge)")
+    body_cells_3d: float = _spec(12, minimum=0.0, maximum=500, doc="the same in 3D")
+    curvature_cells: float = _spec(48, minimum=0.0, maximum=5000,
+                                   doc="cells per 2π of the surface's turning, where it turns fast")
     # 1.2: the elliptic section's coarse 2D mesh has 11.0k cells (17.5k at 1.1), and an
     # interFoam step costs ~11 µs per cell on 2 ranks here: 5 roll periods in ~2 min
-    growth: float = _spec(1.2, minimum=1.0, maximum=3.0)
-    growth_3d: float = _spec(1.2, minimum=1.0, maximum=3.0)
+    growth: float = _spec(1.2, minimum=1.0, maximum=3.0,
+                          doc="size ratio of neighbouring cells away from the body (2D, wedge)")
+    growth_3d: float = _spec(1.2, minimum=1.0, maximum=3.0, doc="the same in 3D")
     # prism layers at the body in 3D (a body given by triangles, or an ellipsoid): their count
     # (left out: TRIANGLE_LAYERS at a body given by triangles, 0 at an exact solid; resolved
     # when the case loads) and their total height in body cells (meshing.domain3d)
@@ -200,8 +214,11 @@ class GmshSettings:
                                   doc="default: 3 at a body given by triangles (stl, "
                                   "implicit), 0 at an exact solid (an ellipsoid takes them "
                                   "when given)")
-    layers_height_3d: float = _spec(1.0, minimum=0.0, maximum=5.0, added=True)
-    margin: float = _spec(0.5, minimum=0.0, maximum=50.0)
+    layers_height_3d: float = _spec(1.0, minimum=0.0, maximum=5.0, added=True,
+                                    doc="the prism layers' total height, in body cells")
+    margin: float = _spec(0.5, minimum=0.0, maximum=50.0,
+                          doc="half-thickness of the core block around the body, × its smallest "
+                              "dimension")
 
     def check(self) -> None:
         pass
@@ -212,15 +229,25 @@ class MeshSettings:
     """``[mesh]``: the refinement ratio between levels and the blockMesh O-grid's counts (at the
     coarse level); ``[mesh.gmsh]`` the gmsh meshes'."""
 
-    refinement_ratio: float = _spec(math.sqrt(2.0), minimum=1.0, maximum=4.0)
+    refinement_ratio: float = _spec(math.sqrt(2.0), minimum=1.0, maximum=4.0,
+                                    doc="r: cell counts grow by it from one level to the next, the"
+                                        " time step shrinks by it")
     mesher: str = _spec("gmsh", kind=str, doc="gmsh (any body) or ogrid (a circle)")
-    square_half_size: float | None = _spec(None, minimum=0.0)
-    cells_side: int = _spec(40, kind=int, minimum=0, maximum=20000)
-    cells_radial: int = _spec(16, kind=int, minimum=0, maximum=20000)
-    radial_grading: float = _spec(2.0, minimum=0.0, maximum=1000.0)
-    cells_horizontal: int = _spec(40, kind=int, minimum=0, maximum=20000)
-    cells_below: int = _spec(30, kind=int, minimum=0, maximum=20000)
-    cells_above: int = _spec(16, kind=int, minimum=0, maximum=20000)
+    square_half_size: float | None = _spec(None, minimum=0.0,
+                                           doc="m, O-grid: half the side of the square around the "
+                                               "circle")
+    cells_side: int = _spec(40, kind=int, minimum=0, maximum=20000,
+                            doc="O-grid: cells along a side of the square")
+    cells_radial: int = _spec(16, kind=int, minimum=0, maximum=20000,
+                              doc="O-grid: cells from the circle to the square")
+    radial_grading: float = _spec(2.0, minimum=0.0, maximum=1000.0,
+                                  doc="O-grid: last to first radial cell's size")
+    cells_horizontal: int = _spec(40, kind=int, minimum=0, maximum=20000,
+                                  doc="O-grid: cells from the square to each end")
+    cells_below: int = _spec(30, kind=int, minimum=0, maximum=20000,
+                             doc="O-grid: cells below the square")
+    cells_above: int = _spec(16, kind=int, minimum=0, maximum=20000,
+                             doc="O-grid: cells above the square")
     gmsh: GmshSettings = field(default_factory=GmshSettings)
 
     def check(self) -> None:
@@ -239,12 +266,23 @@ class MeshSettings:
 class DomainSettings:
     """``[domain]``: the tank around the body (m); absent values scale with the body."""
 
-    half_length: float | None = _spec(None, minimum=0.0)
-    half_width: float | None = _spec(None, minimum=0.0)
-    depth: float | None = _spec(None, minimum=0.0)
-    air_height: float | None = _spec(None, minimum=0.0)
-    band: float | None = _spec(None, minimum=0.0)
-    thickness: float | None = _spec(None, minimum=0.0)
+    half_length: float | None = _spec(None, minimum=0.0,
+                                      doc="m: from the body to each end (y in 2D, x in 3D, a "
+                                          "wedge's radius; default 20 × the body's largest "
+                                          "dimension)")
+    half_width: float | None = _spec(None, minimum=0.0,
+                                     doc="m, 3D: to each side (default: half_length)")
+    depth: float | None = _spec(None, minimum=0.0,
+                                doc="m of water (default: fluid.depth, else 10 × the body's "
+                                    "largest dimension)")
+    air_height: float | None = _spec(None, minimum=0.0,
+                                     doc="m of air above the water (default 3 × the body's largest"
+                                         " dimension)")
+    band: float | None = _spec(None, minimum=0.0,
+                               doc="m: half-height of the refined band about the free surface "
+                                   "(default: where the waterline goes in the first oscillation)")
+    thickness: float | None = _spec(None, minimum=0.0,
+                                    doc="m: a 2D slab's (default: the section's length)")
 
     def check(self) -> None:
         pass
@@ -255,10 +293,14 @@ class PotentialSettings:
     """``[potential]``: the panel count and the frequencies (ω√(ℓ/g)) of potential flow; absent
     values take the module defaults."""
 
-    panels: int | None = _spec(None, kind=int, minimum=7, maximum=20000)
-    omega_min: float | None = _spec(None, minimum=0.0)
-    omega_max: float | None = _spec(None, minimum=0.0)
-    frequencies: int | None = _spec(None, kind=int, minimum=1, maximum=2000)
+    panels: int | None = _spec(None, kind=int, minimum=7, maximum=20000,
+                               doc="wetted panels (default 64 for a 2D section, 800 in 3D)")
+    omega_min: float | None = _spec(None, minimum=0.0,
+                                    doc="lowest frequency, ω√(ℓ/g) (default 0.05)")
+    omega_max: float | None = _spec(None, minimum=0.0,
+                                    doc="highest frequency, ω√(ℓ/g) (default 2.5)")
+    frequencies: int | None = _spec(None, kind=int, minimum=1, maximum=2000,
+                                    doc="frequencies between them (default 32)")
 
     def check(self) -> None:
         if self.omega_min is not None and self.omega_max is not None \

@@ -21,9 +21,9 @@ def current_study(case, build: Path | None = None) -> tuple[dict | None, list[st
     """(the study of ``case``, []) when every run it was made from was stamped with the case's
     settings of today; (None, the names of those that were not) when the case file, a --set or
     a default has changed since (the study is not of this case any more); (None, []) without
-    a study. The stamps are those the study recorded when it was made; a study written before
-    it recorded them (2026-12-02) is checked against the stamps in the run folders. A run
-    without a stamp (made by hand) leaves the study as it is."""
+    a study. The stamps are those the study recorded when it was made; a study that holds no
+    stamps is checked against the stamps in the run folders. A run without a stamp (made by
+    hand) leaves the study as it is."""
     from floatfoam.foam.driver import settings_digest, stamp_of
 
     study = read_study(case.name, build)

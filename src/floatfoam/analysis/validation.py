@@ -24,7 +24,7 @@ the record, :func:`floatfoam.analysis.compare.record_fit`) it gives
   to be conservative: the fine level's steps are never longer than the medium's (same Courant
   limit on smaller cells, largest step divided by the level factor), and a first-order error
   shrinks with the step — if its constant is about the same on both meshes. Halving the
-  medium level costs about a quarter of halving the fine one, which was 62 % of a whole study
+  medium level costs about a quarter of halving the fine one, which takes 62 % of a whole study
   (cylinder_heave: 1705 of 2736 s wall on 2 ranks); ``--time-level fine`` halves the fine
   level itself;
 * the mesh-motion study: the coarse level once more with its mesh motion spread wider

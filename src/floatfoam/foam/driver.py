@@ -53,14 +53,13 @@ class RunResult:
 
 def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float = 1.0) -> str:
     """Hash of what a run depends on: the case file, the values it resolves to with the
-    defaults (a changed default, as run.acceleration_relaxation's on 2026-12-02, makes every
-    run made before another run's) and the mesh motion they resolve to
-    (:func:`_resolved_motion`), the level, the time-step divisor and morphing factor of a
-    study's run, the shared dictionaries and the solver binary. Not the case's words ([case]
-    title, description, and the name of the case it extends: its tables are in), nor its
-    [reference] measurements: adding a measurement must not make a finished run look
-    foreign; nor run.end_time, which says only how far the run goes (its own is in its
-    info.json: :mod:`floatfoam.foam.extension`)."""
+    defaults (a changed default makes every run made at the former one another run's) and the
+    mesh motion they resolve to (:func:`_resolved_motion`), the level, the time-step divisor
+    and morphing factor of a study's run, the shared dictionaries and the solver binary. Not
+    the case's words ([case] title, description, and the name of the case it extends: its
+    tables are in), nor its [reference] measurements: adding a measurement must not make a
+    finished run look foreign; nor run.end_time, which says only how far the run goes (its
+    own is in its info.json: :mod:`floatfoam.foam.extension`)."""
     stamp = settings.stamped(case.settings)
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()

@@ -130,7 +130,7 @@ ASYMPTOTIC_E1 = 40.0  # |z| above which e^z E1(z) is its asymptotic series (erro
 def _exp_e1(z: np.ndarray) -> np.ndarray:
     """e^z E1(z) for Re z ≤ 0: scipy's product where |z| ≤ 40, the asymptotic series
     Σ (−1)ⁿ n!/z^{n+1}, n ≤ 10 (Abramowitz & Stegun 5.1.51) beyond, where e^z underflows and
-    E1 overflows (deep points at high frequency: their product was 0 × inf = nan)."""
+    E1 overflows (deep points at high frequency: there scipy's product is 0 × inf = nan)."""
     far = np.abs(z) > ASYMPTOTIC_E1
     if not far.any():
         return np.exp(z) * exp1(z)
