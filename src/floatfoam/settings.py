@@ -125,7 +125,8 @@ class RunSettings:
                                doc="the largest Courant number the adjustable time step allows")
     max_alpha_courant: float | None = _spec(None, minimum=0.0, maximum=5.0,
                                             doc="at the interface (default: max_courant)")
-    max_delta_t: float = _spec(0.005, minimum=0.0, doc="s: the largest time step, at the coarse level")
+    max_delta_t: float = _spec(0.005, minimum=0.0,
+                               doc="s: the largest time step, at the coarse level")
     # 1: no relaxation, v1912's own default; 0.7 leaves the six-DoF coupling loop unconverged
     # and the lightly damped rolls' ζ 2–10 % short (docs/coupling.md)
     acceleration_relaxation: float = _spec(1.0, minimum=0.0, maximum=1.0,
