@@ -11,6 +11,10 @@ One figure per record, four panels:
 * period per cycle versus amplitude;
 * damping ratio per cycle (and per half cycle) versus amplitude.
 
+An extinction curve (:mod:`floatfoam.analysis.extinction`) has a figure of its own, two
+panels: the decrement per half swing against its mean amplitude, and the equivalent damping
+ratio against the amplitude.
+
 All values are drawn in file units (m, deg). The PNG's ``Description`` holds the first panel's
 legend, one entry a line: what the figure sets beside the record, for a reader without eyes.
 """
@@ -26,6 +30,7 @@ from matplotlib.figure import Figure
 
 from floatfoam import dofs
 from floatfoam.analysis.decay import DecayResult, log_decrement_damping
+from floatfoam.analysis.extinction import ExtinctionCurve
 
 
 @dataclass
@@ -187,6 +192,53 @@ def plot_decay(path: str | Path, time, value, result: DecayResult, *,
     path.parent.mkdir(parents=True, exist_ok=True)
     legend = "\n".join(motion.get_legend_handles_labels()[1])
     fig.savefig(path, dpi=110, metadata={"Description": legend})
+    return path
+
+
+def plot_extinction(path: str | Path, curve: ExtinctionCurve, *, scale: float = 1.0,
+                    unit: str = "", title: str = "") -> Path:
+    """Write the extinction figure of one record to ``path`` (file units: ``scale`` × code).
+
+    Left: the decrement Δφ of each half swing against its mean amplitude φ_m, with the fit
+    a φ_m + b φ_m² (+ c φ_m³) and its 95 % band. Right: the equivalent damping ratio against
+    the amplitude: Δφ/(π φ_m) per half swing, ζ_i per cycle (quasi-linear), the fit's
+    ζ_eq = (a + b φ + c φ²)/π with its band and the quasi-linear line ζ1 + ζ2 φ.
+    """
+    grid = np.linspace(0.0, 1.05 * float(np.max(curve.start)), 200)
+    fitted, half = curve.fitted_decrement(grid)
+    terms = "a φ_m + b φ_m² + c φ_m³" if curve.cubic else "a φ_m + b φ_m²"
+    fig = Figure(figsize=(11, 4.5), layout="constrained")
+    left, right = fig.subplots(1, 2)
+    left.plot(curve.mean_amplitude * scale, curve.decrement * scale, "o", color="C0",
+              label="half swings")
+    left.plot(grid * scale, fitted * scale, color="C1", label=f"fit {terms}")
+    left.fill_between(grid * scale, (fitted - half) * scale, (fitted + half) * scale,
+                      color="C1", alpha=0.15, lw=0, label="95 % interval")
+    left.set_xlabel(f"mean amplitude φ_m ({unit})")
+    left.set_ylabel(f"decrement per half swing Δφ ({unit})")
+    left.set_xlim(left=0.0)
+    left.legend(fontsize=7)
+    zeta = curve.damping_ratio_equivalent(grid)
+    zeta_half = curve.damping_ratio_equivalent_ci95(grid)
+    right.plot(curve.mean_amplitude * scale, curve.half_swing_damping(), "o", color="C0",
+               label="Δφ / (π φ_m) per half swing")
+    right.plot(curve.cycle_amplitude * scale, curve.cycle_damping, "s", color="C3", mfc="none",
+               label="ln(φ_i / φ_i+2) / 2π per cycle")
+    right.plot(grid * scale, zeta, color="C1", label="ζ_eq of the fit")
+    right.fill_between(grid * scale, zeta - zeta_half, zeta + zeta_half, color="C1", alpha=0.15,
+                       lw=0)
+    zeta1, zeta2 = curve.quasi_linear.coefficients
+    right.plot(grid * scale, zeta1 + zeta2 * grid, color="C3", ls="--",
+               label="quasi-linear ζ1 + ζ2 φ")
+    right.set_xlabel(f"amplitude ({unit})")
+    right.set_ylabel("equivalent damping ratio ζ_eq")
+    right.set_xlim(left=0.0)
+    right.legend(fontsize=7)
+    if title:
+        fig.suptitle(title)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
     return path
 
 

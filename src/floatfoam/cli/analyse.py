@@ -6,7 +6,9 @@ the one that moves most (:func:`floatfoam.analysis.released.choose`, which also 
 that does not move above the noise). With ``--json`` it prints one object per DoF (keys in
 :func:`floatfoam.analysis.decay.decay_dict`, with ``dof`` and ``dof_from``, why that DoF;
 confidence intervals are 95 % [lo, hi] pairs), a list of them for a run that released
-several; otherwise a readable table per DoF.
+several; otherwise a readable table per DoF. ``--extinction`` (``--cubic``) adds the record's
+extinction curve, an ``extinction`` object in the JSON (keys in
+:meth:`floatfoam.analysis.extinction.ExtinctionCurve.to_dict`).
 """
 
 from __future__ import annotations
@@ -33,6 +35,15 @@ def add_arguments(parser) -> None:
     parser.add_argument("--drift", action="store_true", help="fit a linear drift of the mean")
     parser.add_argument("--quadratic", action="store_true",
                         help="fit linear + quadratic damping (integrates the ODE; slower)")
+    parser.add_argument("--extinction", action="store_true",
+                        help="also the extinction curve (ITTC 7.5-02-07-04.5): the decrement "
+                             "per half swing against the mean amplitude, fitted a φ_m + "
+                             "b φ_m², ITTC's p1, p2, the equivalent damping ratio and the "
+                             "quasi-linear ζ1 + ζ2 φ_m; with --plot also <PNG stem>-extinction"
+                             ".png")
+    parser.add_argument("--cubic", action="store_true",
+                        help="add the cubic term c φ_m³ (p3) to the extinction fit (implies "
+                             "--extinction)")
     parser.add_argument("--start", type=float, metavar="T",
                         help="ignore the record before time T (s)")
     parser.add_argument("--json", action="store_true",
@@ -113,6 +124,12 @@ def _analyse(args, path, motion: dict, dof: str, reason: str, plot: str | None) 
                            units=(scale, unit), name=dofs.dof(dof).column)
     data = {"source": str(path), **decay_dict(result, scale=scale, unit=unit, dof=dof),
             "dof_from": reason}
+    curve = None
+    if args.extinction or args.cubic:  # before any figure: a record too short writes none
+        from floatfoam.analysis.extinction import extinction_curve
+
+        curve = extinction_curve(result, cubic=args.cubic, name=f"{dof} of {path}")
+        data["extinction"] = curve.to_dict(unit=unit, scale=scale)
     if plot:
         from floatfoam.analysis.overlay import run_overlay
         from floatfoam.analysis.plots import plot_decay
@@ -126,6 +143,13 @@ def _analyse(args, path, motion: dict, dof: str, reason: str, plot: str | None) 
             print(f"note: the figure has no model beside the record: {why}", file=sys.stderr)
         data["plot"] = str(plot_decay(plot, time, value, result, overlay=overlay, scale=scale,
                                       unit=unit, title=f"{path}: {dof} decay"))
+        if curve is not None:
+            from floatfoam.analysis.plots import plot_extinction
+
+            given = Path(plot)
+            data["extinction"]["plot"] = str(plot_extinction(
+                given.with_name(f"{given.stem}-extinction{given.suffix}"), curve, scale=scale,
+                unit=unit, title=f"{path}: {dof} extinction curve"))
     return data
 
 
@@ -162,6 +186,43 @@ def format_result(d: dict) -> str:
     zetas = log_decrement_damping(d["log_decrements"])
     lines += [f"{i + 1:>5} {delta:>9.4f} {z:>9.4f} {a:>15.4g}" for i, (delta, z, a)
               in enumerate(zip(d["log_decrements"], zetas, d["damping_amplitudes"], strict=True))]
+    if "extinction" in d:
+        lines += ["", *format_extinction(d["extinction"])]
     if "plot" in d:
         lines += ["", f"plot: {d['plot']}"]
     return "\n".join(lines)
+
+
+def format_extinction(e: dict) -> list[str]:
+    """Readable lines of :meth:`ExtinctionCurve.to_dict` output: the half swings, then the
+    fits with their 95 % intervals."""
+    u = e["unit"]
+    lines = [f"extinction curve Δφ = {e['terms']} (ITTC 7.5-02-07-04.5), ω = 2π/T_n = "
+             f"{e['natural_frequency_rad_per_s']:.5g} rad/s",
+             f"{'half swing':>10} {'t (s)':>8} {f'mean amplitude ({u})':>21} "
+             f"{f'decrement ({u})':>16} {'ζ_eq':>8} {'ζ_eq fit':>9}"]
+    lines += [f"{i + 1:>10} {t:>8.4g} {a:>21.4g} {d:>16.4g} {z:>8.4f} {f:>9.4f}"
+              for i, (t, a, d, z, f) in enumerate(zip(
+                  e["half_swing_time_s"], e[f"mean_amplitude_{u}"], e[f"decrement_{u}"],
+                  e["damping_ratio_equivalent"], e["damping_ratio_equivalent_fit"],
+                  strict=True))]
+    rows = [("a", e["a"], e["a_ci95"]),
+            (f"b (1/{u})", e[f"b_per_{u}"], e[f"b_per_{u}_ci95"])]
+    if f"c_per_{u}2" in e:
+        rows.append((f"c (1/{u}²)", e[f"c_per_{u}2"], e[f"c_per_{u}2_ci95"]))
+    rows += [("p1 = 2α (1/s)", e["p1_per_s"], e["p1_per_s_ci95"]),
+             (f"p2 = β (1/{u})", e[f"p2_per_{u}"], e[f"p2_per_{u}_ci95"])]
+    if f"p3_s_per_{u}2" in e:
+        rows.append((f"p3 = γ (s/{u}²)", e[f"p3_s_per_{u}2"], e[f"p3_s_per_{u}2_ci95"]))
+    q = e["quasi_linear"]
+    rows += [(f"ζ_eq at {e[f'release_amplitude_{u}']:.4g} {u} (first)",
+              e["damping_ratio_equivalent_release"], e["damping_ratio_equivalent_release_ci95"]),
+             ("quasi-linear ζ1", q["zeta1"], q["zeta1_ci95"]),
+             (f"quasi-linear ζ2 (1/{u})", q[f"zeta2_per_{u}"], q[f"zeta2_per_{u}_ci95"])]
+    lines += ["", f"{'':28}{'value':>12}  95 % interval"]
+    lines += [f"{label:<28}{value:>12.5g}  {_ci(ci)}" for label, value, ci in rows]
+    lines.append(f"fit residual rms {e[f'residual_rms_{u}']:.3g} {u} ({e['fit_dof']} degrees "
+                 f"of freedom); quasi-linear over {len(q['damping_ratio'])} cycles")
+    if "plot" in e:
+        lines.append(f"extinction plot: {e['plot']}")
+    return lines
