@@ -61,3 +61,16 @@ def test_every_setting_says_what_it_means():
             if item.name == "gmsh":
                 continue
             assert item.metadata.get("doc"), f"{cls.__name__}.{item.name}"
+
+
+def test_the_validation_page_lists_every_measured_reference(tmp_path):
+    """Generated from the cases' [reference] tables: every entry of every case is a row (an
+    empty build folder: no study)."""
+    from floatfoam.case import load_case
+    from floatfoam.layout import list_cases
+
+    page = docsite.validation_page(tmp_path)
+    for folder in list_cases():
+        for key in load_case(folder.name).reference:
+            assert f"cases/{folder.name}/README.md) | {key}" in page, (folder.name, key)
+    assert "No study of today's settings in this build folder" in page

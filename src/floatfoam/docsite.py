@@ -3,12 +3,13 @@ READMEs and CHANGELOG.md, with its reference pages generated from the code.
 
 The pages are staged in ``<build>/docs/src`` as they sit in the repository (README.md as the
 home page, ``index.md``), so that every relative link of the repository resolves in the site
-too; a file a page links to that is no page (a case.toml, a CSV) is staged beside it. Three
+too; a file a page links to that is no page (a case.toml, a CSV) is staged beside it. Four
 pages are generated, never written by hand: ``docs/reference/case-toml.md`` (every table and
 key of a case file, from :mod:`floatfoam.settings` and :data:`floatfoam.case.KEY_DOCS`),
-``docs/reference/commands.md`` (every command and option, from the CLI's parser) and
+``docs/reference/commands.md`` (every command and option, from the CLI's parser),
 ``docs/reference/api.md`` (the package's modules and public functions, from their
-docstrings). ``mkdocs build --strict`` then fails on any warning, a broken link or anchor
+docstrings) and ``docs/reference/validation-references.md`` (every case's measured references
+and the studies of this build folder). ``mkdocs build --strict`` then fails on any warning, a broken link or anchor
 among them.
 """
 
@@ -40,7 +41,7 @@ NAV = [
     ("Reference", ["docs/reference/case-toml.md", "docs/reference/commands.md",
                    "docs/reference/api.md", "docs/conventions.md"]),
     ("Theory", ["docs/theory", "docs/memoir.md", "docs/potential.md"]),
-    ("Validation", ["docs/validation.md"]),
+    ("Validation", ["docs/validation.md", "docs/reference/validation-references.md"]),
     ("Cases", ["cases"]),
     ("Developer guide", ["docs/architecture.md", "docs/developer"]),
     ("Studies", ["docs/morphing.md", "docs/coupling.md", "docs/openfoam-v1912.md",
@@ -192,6 +193,56 @@ def api_reference() -> str:
     return "\n".join(lines) + "\n"
 
 
+def validation_page(build: Path | None = None) -> str:
+    """Each case's measured references (its ``[reference]`` table: value, uncertainty, source)
+    and, where ``floatfoam validate`` has left a study of the case's settings of today in the
+    build folder, the CFD's finest level ± U_num for each quantity."""
+    from floatfoam.analysis.compare import reference_entry
+    from floatfoam.analysis.uncertainty import current_study
+    from floatfoam.analysis.validation import QUANTITIES
+    from floatfoam.case import load_case
+
+    lines = ["# Validation: references and studies", "",
+             "Generated from the cases' `[reference]` tables and the studies `floatfoam validate` "
+             "has written in this machine's build folder (`make docs` regenerates it). A study "
+             "made with other settings than the case's of today is left out.", "",
+             "| case | measured | value | uncertainty | source |", "|---|---|---|---|---|"]
+    studies = []
+    for folder in layout.list_cases():
+        case = load_case(folder.name)
+        for key in case.reference:
+            if key.endswith("_record"):
+                source = case.reference[key].get("source", "")
+                lines.append(f"| [{case.name}](../../cases/{case.name}/README.md) | {key} "
+                             f"(a record: `{case.reference[key]['file']}`) | | | {source} |")
+                continue
+            value, uncertainty, source = reference_entry(case.reference, key)
+            spread = "" if uncertainty is None else f"± {uncertainty:g}"
+            lines.append(f"| [{case.name}](../../cases/{case.name}/README.md) | {key} | "
+                         f"{value:g} | {spread} | {source} |")
+        study, _ = current_study(case, build)
+        if study is not None:
+            studies.append((case.name, study))
+    lines += ["", "## Grid and time-step studies", ""]
+    if not studies:
+        lines.append("No study of today's settings in this build folder: "
+                     "`make validate CASE=<case>` makes one.")
+    for name, study in studies:
+        lines += [f"### {name}", "", "| DoF | quantity | finest level | U_num |",
+                  "|---|---|---|---|"]
+        for dof, entry in study["dofs"].items():
+            finest = [run for run in ("fine", "medium", "coarse") if run in entry["runs"]]
+            for key, words, _ in QUANTITIES:
+                q = entry["quantities"].get(key, {})
+                value = entry["runs"][finest[0]].get(key) if finest else None
+                u = q.get("uncertainty")
+                shown = "—" if value is None else f"{value:.5g} ({finest[0]})"
+                lines.append(f"| {dof} | {words} | {shown} | "
+                             f"{'—' if u is None else f'{100 * u:.2g} %'} |")
+        lines.append("")
+    return "\n".join(lines) + "\n"
+
+
 def stage(out: Path) -> Path:
     """The site's sources in ``out``: the repository's pages where they sit, the generated
     reference, every file a page links to, and mkdocs.yml. Returns mkdocs.yml's path."""
@@ -213,6 +264,7 @@ def stage(out: Path) -> Path:
     (reference / "case-toml.md").write_text(settings_reference())
     (reference / "commands.md").write_text(commands_reference())
     (reference / "api.md").write_text(api_reference())
+    (reference / "validation-references.md").write_text(validation_page())
     config = out / "mkdocs.yml"
     config.write_text(_config(src, out / "site"))
     return config

@@ -8,7 +8,8 @@ and, for each case, writes into ``build/report/``:
   Cummins' model, each ``build/<case>/<level>/motion.csv``, the reference; Δ against Cummins'
   model and against the measurement) as ``<case>/comparison.{md,csv}``,
 * one decay figure per CFD run and DoF, the record beside Cummins' model and any measurement
-  (``<case>/<level>_<dof>.png``, :mod:`floatfoam.analysis.plots`),
+  (``<case>/<level>_<dof>.png``, :mod:`floatfoam.analysis.plots`), and for a roll record its
+  extinction curve (``<case>/<level>_roll_extinction.png``, :mod:`floatfoam.analysis.extinction`),
 * the righting arm GZ(φ) of a case released heeled (``<case>/gz.png``,
   :func:`floatfoam.hydrostatics.gz.plot_gz`) and the radiation coefficients A(ω), B(ω) of
   its potential flow (``<case>/potential.png``, :func:`floatfoam.potential.plot.plot_coefficients`),
@@ -134,7 +135,26 @@ def _plots(case, theory, comparison: Comparison, out_dir: Path) -> list[tuple[st
                    title=f"{case.name}, {run.level} mesh: {run.dof} decay")
         beside = f" beside {model.label}" if model else ""
         images.append((name, f"{case.name} {run.level} {run.dof} decay{beside}"))
+        if run.dof == "roll":
+            images += _extinction_plot(case, run, out_dir, scale, unit)
     return images
+
+
+def _extinction_plot(case, run, out_dir: Path, scale: float, unit: str) -> list:
+    """The roll record's extinction curve (:mod:`floatfoam.analysis.extinction`), or nothing
+    when the record holds too few half swings for its fit."""
+    from floatfoam.analysis.extinction import extinction_curve
+    from floatfoam.analysis.plots import plot_extinction
+
+    try:
+        curve = extinction_curve(run.result, name=f"{case.name} {run.level}")
+    except InputError:
+        return []
+    name = f"{case.name}/{run.level}_{run.dof}_extinction.png"
+    plot_extinction(out_dir / name, curve, scale=scale, unit=unit,
+                    title=f"{case.name}, {run.level} mesh: {run.dof} extinction curve")
+    return [(name, f"{case.name} {run.level} {run.dof} extinction curve: decrement per half "
+                   "swing and equivalent damping ratio against amplitude")]
 
 
 def _figures(doc: Document, case, sources: Sources, out_dir: Path) -> None:
