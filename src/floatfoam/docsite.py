@@ -9,8 +9,8 @@ key of a case file, from :mod:`floatfoam.settings` and :data:`floatfoam.case.KEY
 ``docs/reference/commands.md`` (every command and option, from the CLI's parser),
 ``docs/reference/api.md`` (the package's modules and public functions, from their
 docstrings) and ``docs/reference/validation-references.md`` (every case's measured references
-and the studies of this build folder). ``mkdocs build --strict`` then fails on any warning, a broken link or anchor
-among them.
+and the studies of this build folder). ``mkdocs build --strict`` then fails on any warning,
+a broken link or anchor among them.
 """
 
 from __future__ import annotations
