@@ -36,7 +36,9 @@ LINK = re.compile(r"\]\(([^)\s#]+)(#[^)\s]*)?\)")
 NAV = [
     ("Home", ["index.md"]),
     ("Getting started", ["docs/getting-started.md"]),
-    ("Tutorials", ["docs/tutorials"]),
+    ("Tutorials", ["docs/tutorials/own-section.md", "docs/tutorials/own-stl.md",
+                   "docs/tutorials/roll-decay.md", "docs/tutorials/grid-study.md",
+                   "docs/tutorials"]),
     ("User guide", ["docs/guide", "docs/paraview.md"]),
     ("Reference", ["docs/reference/case-toml.md", "docs/reference/commands.md",
                    "docs/reference/api.md", "docs/conventions.md"]),
@@ -291,10 +293,11 @@ def _nav(src: Path) -> list:
         items = []
         for entry in entries:
             path = src / entry
-            if path.is_dir():
+            if path.is_dir():  # its pages not named before it, by name
                 found = sorted(path.rglob("*.md"))
-                items += [p.relative_to(src).as_posix() for p in found]
-            elif path.is_file():
+                items += [p.relative_to(src).as_posix() for p in found
+                          if p.relative_to(src).as_posix() not in items]
+            elif path.is_file() and entry not in items:
                 items.append(entry)
         if len(items) == 1 and title != "Cases":
             nav.append({title: items[0]})
