@@ -25,7 +25,7 @@ CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cy
 	ellipsoid_roll ellipsoid_pitch ellipsoid ellipsoid_printed_verdict stl_pontoon superellipsoid_buoy lab_sphere \
 	lab_sphere_03D lab_sphere_05D \
 	flume_section_roll flume_section_roll_sway_held flume_section_heave
-.PHONY: $(CFD_CASES) help setup run test test-extended mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures docs bench-theory bench-potential bench-cfd clean
+.PHONY: $(CFD_CASES) help setup run test test-extended mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures docs bench-theory bench-potential bench-cfd bench-sharing clean
 
 help:  ## list the targets
 	@grep -E '^[a-zA-Z_-]+:.*## ' $(MAKEFILE_LIST) | awk -F':.*## ' '{printf "  %-16s %s\n", $$1, $$2}'
@@ -89,6 +89,9 @@ validate: setup  ## grid + time-step convergence (GCI) of CASE: coarse, medium, 
 bench-cfd: setup  ## every CFD case, 1 s simulated (FULL=1: whole records): cells, steps, wall, 1 vs 2 ranks
 	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2 --cases $(or $(CASES),$(CFD_CASES)) \
 		$(if $(FULL),--full)
+
+bench-sharing: setup  ## two runs at once on the cores against one alone (CASE, default cylinder_heave; 1 and 2 ranks)
+	$(PY) scripts/bench_sharing.py --case $(or $(CASE),cylinder_heave) --ranks 1 2
 
 bench-theory: setup  ## time `floatfoam theory` for every case (target ≤ 0.6 s median each)
 	$(PY) scripts/bench_theory.py

@@ -84,7 +84,7 @@ def pictures(build, *argv):
 
 @pytest.mark.parametrize("argv, says", [
     (["sphere", "--level", "huge"], "--level 'huge'"),
-    (["sphere", "--level", "medium"], "no finished run"),
+    (["sphere", "--level", "medium"], "no run in"),
     (["sphere", "--times", "0.1", "5"], "--times 5 s"),
     (["sphere", "--times", "-0.1"], "--times -0.1 s"),
     (["sphere", "--colour", "red"], "--colour 'red'"),

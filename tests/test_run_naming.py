@@ -21,7 +21,9 @@ def build(tmp_path, monkeypatch):
 def test_a_case_names_its_run_at_the_level(build):
     run = fake_run(build)
     assert resolve_run("sphere", None) == run  # the default level: coarse
-    assert resolve_run("sphere", "medium") == build / "sphere" / "medium"
+    with pytest.raises(InputError, match=r"^sphere --level medium: no run in .* yet; valid is "
+                       r"a case run first \(floatfoam run sphere --level medium\)"):
+        resolve_run("sphere", "medium")  # not run yet: the command to run, as typed
     assert resolve_run(str(run), None) == run  # a run folder: as given
 
 

@@ -246,11 +246,15 @@ def apply_override(raw: dict, item: str) -> None:
     known = table in SCHEMA and (allowed is None and head in raw.get(table, {})
                                  or allowed is not None and name in allowed or gmsh)
     if not known:
-        valid = sorted(f"{t}.{k}" for t, keys in SCHEMA.items() if keys for k in keys)
-        near = difflib.get_close_matches(key, valid, n=1)
+        everywhere = sorted(f"{t}.{k}" for t, keys in SCHEMA.items() if keys for k in keys)
+        near = difflib.get_close_matches(key, everywhere, n=1)
         hint = f" (did you mean {near[0]}?)" if near else ""
-        raise InputError(f"--set {key}: unknown key{hint}; valid keys are {', '.join(valid)} "
-                         "(and keys already in the case's free-form tables)")
+        if allowed:  # a known table: its keys (the reference lists every table's)
+            valid = f"valid keys in [{table}] are {', '.join(sorted(allowed))}"
+        else:
+            valid = f"valid tables are {', '.join(f'[{t}]' for t in SCHEMA)}"
+        raise InputError(f"--set {key}: unknown key{hint}; {valid} (docs/guide/cases.md; "
+                         "and keys already in the case's free-form tables)")
     try:
         value = tomllib.loads(f"v = {text.strip()}")["v"]
     except tomllib.TOMLDecodeError:
@@ -273,6 +277,9 @@ def _check_tables(raw: dict, complete: bool = True) -> None:
         if not isinstance(values, dict):
             raise InputError(f"case entry {table} = {values!r}: valid is a table [{table}]")
         allowed = SCHEMA[table]
+        shape = values.get("shape") if table == "body" else None
+        if shape in SHAPES:  # the keys of its shape (the others are no body's of this case)
+            allowed = {"shape", *SHAPES[shape], *OPTIONAL_BODY.get(shape, ())}
         if allowed is not None and table not in settings.TABLES:  # those: parse_settings
             for key in values:
                 if key not in allowed:

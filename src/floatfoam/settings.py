@@ -355,7 +355,8 @@ def keys(cls) -> list[str]:
 def unknown_key(name: str, key: str, valid) -> InputError:
     """The error for an unknown key: the valid ones and the nearest, if any is near."""
     valid = sorted(valid)
-    near = difflib.get_close_matches(key, valid, n=1)
+    near = difflib.get_close_matches(key, valid, n=1) or [
+        name for name in valid if len(key) > 2 and (name.startswith(key) or key in name)][:1]
     hint = f" (did you mean {name}.{near[0]}?)" if near else ""
     return InputError(f"{name}.{key} is unknown{hint}; valid keys in [{name}] are "
                       f"{', '.join(valid)}")

@@ -78,4 +78,8 @@ def resolve_run(text: str, level: str | None, *, csv: bool = False):
     except InputError as err:
         kinds = "a motion CSV, a run folder" if csv else "a run folder"
         raise InputError(f"RUN {text}: neither {kinds} nor a case ({err})") from None
-    return layout.run_dir(case.name, level)
+    run = layout.run_dir(case.name, level)
+    if not run.is_dir():
+        raise InputError(f"{text} --level {level}: no run in {run} yet; valid is a case run "
+                         f"first (floatfoam run {text} --level {level})")
+    return run

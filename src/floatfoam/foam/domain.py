@@ -320,7 +320,16 @@ def make_polymesh(mesh: RunMesh, run_dir: Path) -> dict | None:
         set_patch_types(run_dir)
         mark_done(run_dir, "patchTypes")
     log = runner.run_app(run_dir, "checkMesh", ["checkMesh"], check=False)
-    return parse_check_mesh(Path(log).read_text()) if log and Path(log).exists() else None
+    check = parse_check_mesh(Path(log).read_text()) if log and Path(log).exists() else None
+    if check and (check["negative_volume_cells"] or check["inverted_pyramid_faces"]):
+        layers = "" if mesh.kind in ("2d", "wedge") else (
+            "; for a curved body given by triangles, mesh.gmsh.layers_3d = 0 (no prism "
+            "layers) or a smoother surface")
+        raise runner.RunError(
+            f"checkMesh: {check['negative_volume_cells']} cells of zero or negative volume, "
+            f"{check['inverted_pyramid_faces']} inverted faces in the {mesh.kind} mesh (see "
+            f"{log}): the solver cannot run on it{layers}")
+    return check
 
 
 def _check_square(case: Case, grid: OGrid) -> None:

@@ -34,7 +34,7 @@ from floatfoam.case import Case
 from floatfoam.errors import InputError
 from floatfoam.foam import domain, extension, paraview, runner
 from floatfoam.foam.motionlog import rebuild_motion
-from floatfoam.foam.ranks import check_ranks
+from floatfoam.foam.ranks import check_free_cores, check_ranks
 from floatfoam.foam.render import end_time_of, release_state, render
 from floatfoam.foam.runlock import RunLock, lock_path
 from floatfoam.foam.timedirs import latest_time, set_aside_incomplete
@@ -477,6 +477,7 @@ def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
               "series is rebuilt from its log", file=sys.stderr)
         rebuild_motion(run_dir / "log.interFoam", motion, reference)
     else:
+        check_free_cores(np_, hostfile, label=label)
         runner.run_solver(run_dir, [str(solver_path(case))], end_time=info["end_time"],
                           np_=np_, hostfile=hostfile, motion_csv=motion, limits=limits,
                           label=label, log_name="interFoam", keep_fds=(lock.fd,),

@@ -92,5 +92,7 @@ def parse_check_mesh(text: str) -> dict:
         "max_skewness": number(r"Max skewness = ([-\d.e+]+)"),
         "max_aspect_ratio": number(r"Max aspect ratio = ([-\d.e+]+)"),
         "mesh_ok": "\nMesh OK." in text,
+        "negative_volume_cells": int(number(r"Number of negative volume cells:\s*(\d+)") or 0),
+        "inverted_pyramid_faces": int(number(r"Error in face pyramids:\s*(\d+)") or 0),
     }
 

@@ -45,3 +45,38 @@ def check_ranks(np_: int, hostfile: Path | None) -> None:
         print(f"warning: --np {np_} is more than the {cores} cores of this machine: the ranks "
               f"will share them and run far slower than --np {cores}; give --hostfile to use "
               "other machines", file=sys.stderr)
+
+
+SOLVER_NAME = "interFoam"  # the process name of every rank of a run (floatfoam's build's too)
+
+
+def running_solver_ranks(name: str = SOLVER_NAME) -> int:
+    """The solver processes running on this machine now (other runs' ranks), from /proc."""
+    count = 0
+    for comm in Path("/proc").glob("[0-9]*/comm"):
+        try:
+            count += comm.read_text().strip() == name
+        except OSError:  # the process ended meanwhile
+            continue
+    return count
+
+
+def check_free_cores(np_: int, hostfile: Path | None, *, label: str = "",
+                     busy: int | None = None) -> bool:
+    """Before the solver starts: say in one line when its ``np_`` ranks and the solver ranks
+    already running (``busy``, default :func:`running_solver_ranks`) are more than this
+    machine's cores. Returns whether they are (a run on other machines, with a hostfile, is
+    not counted here)."""
+    if hostfile is not None:
+        return False
+    busy = running_solver_ranks() if busy is None else busy
+    cores = os.cpu_count() or 1
+    if busy == 0 or busy + np_ <= cores:
+        return False
+    share = (busy + np_) / cores
+    where = f"[{label}] " if label else ""
+    print(f"{where}warning: {busy} solver rank(s) of other runs already use this machine's "
+          f"{cores} cores: this run's {np_} rank(s) will share them, each about {share:.1g} × "
+          "slower than alone (the ranks yield a core they wait on: Open MPI's "
+          "mpi_yield_when_idle)", file=sys.stderr)
+    return True
