@@ -3,6 +3,7 @@ folder as given, or a CASE whose run at --level (default coarse) is meant
 (floatfoam.cli.common.resolve_run). Runs written by hand (test_pictures.fake_run)."""
 
 import json
+from pathlib import Path
 
 import pytest
 from test_pictures import fake_run
@@ -57,3 +58,25 @@ def test_analyse_takes_a_case_or_its_run_folder_alike(build, capsys):
         outputs.append(json.loads(capsys.readouterr().out))
     assert outputs[0] == outputs[1]
     assert outputs[0]["period_mean"] == outputs[2]["period_mean"]
+
+
+def test_a_users_case_run_is_drawn_beside_its_model(tmp_path, build):
+    """A run of a case outside cases/ (its folder in the run's info.json) gets Cummins' model
+    in its figure, as a case of cases/ does (analysis.overlay.run_overlay)."""
+    import shutil
+
+    from floatfoam.analysis.overlay import run_overlay
+    from floatfoam.motion import read_motion
+
+    own = tmp_path / "bodies" / "barge"
+    own.mkdir(parents=True)
+    shutil.copy(Path(__file__).parents[1] / "cases" / "elliptic_cylinder_roll" / "case.toml",
+                own / "case.toml")
+    (own / "case.toml").write_text((own / "case.toml").read_text().replace(
+        'extends = "elliptic_cylinder"', f'extends = "{Path(__file__).parents[1]}/cases/'
+        'elliptic_cylinder"'))
+    run = fake_run(build, times=(0.0, 0.5, 1.0))
+    info = run / ".floatfoam" / "info.json"
+    info.write_text(json.dumps({**json.loads(info.read_text()), "case_path": str(own)}))
+    overlay, why = run_overlay(run, "roll", float(read_motion(run / "motion.csv")["time"][-1]))
+    assert overlay is not None and why == ""  # the model computed

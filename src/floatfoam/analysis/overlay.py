@@ -54,20 +54,32 @@ def decay_overlay(case, theory: TheorySummary, dof: str, model: ModelFit | None 
                    model_damping=summary.get("damping_ratio"))
 
 
+def _case_folder(run: Path) -> Path:
+    """The folder of the case a run was made of: the one its info.json names (any case's),
+    else cases/<the run's case folder name> (a run recorded before info.json named it)."""
+    import json
+
+    try:
+        named = json.loads((run / layout.MARKERS / "info.json").read_text()).get("case_path")
+    except (OSError, ValueError):
+        named = None
+    return Path(named) if named else layout.CASES_DIR / run.parent.name
+
+
 def run_overlay(run: Path, dof: str, duration: float, **options) -> tuple[Overlay | None, str]:
-    """The overlay of a run folder ``<build>/<case>/<run>`` of one of the project's cases
-    (cases/), as the report draws it, with Cummins' model over ``duration`` s analysed with
+    """The overlay of a run folder ``<build>/<case>/<run>`` of a case (the folder its info.json
+    names, else cases/), as the report draws it, with Cummins' model over ``duration`` s analysed with
     ``options`` (the record's), and "" — or (None, why) where there is none: a folder of no
-    case of cases/, a run made with other settings than the case's today (its model would be
+    case on this machine, a run made with other settings than the case's today (its model would be
     another body's); the overlay without the model, and why, where the model cannot be
     computed."""
     from floatfoam.case import load_case
     from floatfoam.foam.driver import stamped_with
     from floatfoam.hydrostatics.theory import theory_summary
 
-    folder = layout.CASES_DIR / run.parent.name
+    folder = _case_folder(run)
     if not (folder / "case.toml").is_file():
-        return None, f"{run} is no run of a case of cases/ (no {folder / 'case.toml'})"
+        return None, (f"{run} is no run of a case this machine has (no {folder / 'case.toml'})")
     try:
         case = load_case(str(folder))
         level, divisor, morphing = layout.parse_run_name(run.name)

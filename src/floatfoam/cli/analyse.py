@@ -51,7 +51,7 @@ def add_arguments(parser) -> None:
                              "released several)")
     parser.add_argument("--plot", metavar="PNG",
                         help="write the decay figure to PNG (several DoFs: PNG's name with "
-                             "-<dof> before its suffix); a run of a case of cases/ is drawn "
+                             "-<dof> before its suffix); a run of a case is drawn "
                              "beside Cummins' model and the case's measurement, as in the "
                              "report")
 

@@ -440,7 +440,8 @@ def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,
     if not layout.step_done(run_dir, "render"):
         info = render(case, level, run_dir, state, mesh, np_=np_)
         # what the run released and the body's size (m): `floatfoam analyse`'s default DoFs
-        info |= {"release": dict(case.release), "body_size": case.body.size}
+        info |= {"release": dict(case.release), "body_size": case.body.size,
+                 "case_path": str(case.path)}  # the case's folder, for analyse's model
         info = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in info.items()}
         info_file.write_text(json.dumps(info, indent=2))
         layout.mark_done(run_dir, "render")
