@@ -67,12 +67,12 @@ def _case_folder(run: Path) -> Path:
 
 
 def run_overlay(run: Path, dof: str, duration: float, **options) -> tuple[Overlay | None, str]:
-    """The overlay of a run folder ``<build>/<case>/<run>`` of a case (the folder its info.json
-    names, else cases/), as the report draws it, with Cummins' model over ``duration`` s analysed with
-    ``options`` (the record's), and "" — or (None, why) where there is none: a folder of no
-    case on this machine, a run made with other settings than the case's today (its model would be
-    another body's); the overlay without the model, and why, where the model cannot be
-    computed."""
+    """The overlay of a run folder ``<build>/<case>/<run>`` of a case (the folder its
+    info.json names, else cases/), as the report draws it, with Cummins' model over
+    ``duration`` s analysed with ``options`` (the record's), and "" — or (None, why) where
+    there is none: a folder of no case on this machine, a run made with other settings than
+    the case's today (its model would be another body's); the overlay without the model, and
+    why, where the model cannot be computed."""
     from floatfoam.case import load_case
     from floatfoam.foam.driver import stamped_with
     from floatfoam.hydrostatics.theory import theory_summary
