@@ -35,6 +35,13 @@ FOAM_ENV = {
     "OMPI_ALLOW_RUN_AS_ROOT": "1",
     "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
     "OMPI_MCA_btl_vader_single_copy_mechanism": "none",  # no CMA in containers
+    # runs that share the cores advance at their share: a rank waiting on the others gives
+    # its core away instead of polling, and no rank is bound to a core (two runs' ranks bound
+    # to the same two cores could not move). Two 2-rank runs at once on 2 cores: 6.0 × the
+    # time alone each without these, 2.85–3.1 × with the yield alone, 2.1–2.2 × with both;
+    # alone unchanged (`make bench-sharing`, docs/guide/benchmarks.md)
+    "OMPI_MCA_mpi_yield_when_idle": "1",
+    "OMPI_MCA_hwloc_base_binding_policy": "none",
 }
 
 
