@@ -5,7 +5,7 @@ tests/test_cfd.py): the step and the measured changes it makes, in one place."""
 # capsizing ellipse, box_bilge and elliptic_cylinder_roll; the other cases' own runs hold 0.5
 # everywhere), steps up to 10 ms. On the sections the bulk Courant number, not the
 # interface's, held the step: the air's spurious currents above the free surface
-# (cases/box_bilge/README.md).
+# (docs/studies/cases/box_bilge.md).
 #
 # Measured on the 2D sections' whole coarse records, against Courant 0.5 everywhere (2 ranks,
 # relaxation 0.7): 38–55 % fewer steps and solver time (box_bilge roll 1,181 → 732 steps, clock

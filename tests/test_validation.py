@@ -49,7 +49,7 @@ from floatfoam.motion import file_unit, write_motion
 # here; the digits are the table as two independent GCI codes hard-code it, which agree where
 # both give them: columns 1 and 2's cells, φ, p, φ_ext21 and GCI in ORNL/cfd-verify
 # tests/test_regression.py (commit 006c9b7), every column with e_a21 and e_ext21 in another
-# code's tests citing the paper's p. 9 (its repository unnamed by our search index). Column
+# code's tests citing the paper's p. 9. Column
 # 2's e_ext21 is left out: the table prints 0.9 %, but its own eq. 5 gives
 # |10.8801 − 10.7880| / 10.8801 = 0.847 %, i.e. 0.8 (over φ1 instead, 0.854 %: the likely slip).
 TABLE_1 = [

@@ -161,7 +161,7 @@ class RunSettings:
     divergence_body_speed: float = _spec(10.0, minimum=0.0,
                                          doc="m/s: a body speed above it stops the run as diverged")
     # Crank–Nicolson ψ 0.9 on box_bilge diverges at relaxation 0.7, and at 0.4 the roll gains
-    # energy (cases/box_bilge/README.md); the cases keep Euler
+    # energy (docs/studies/cases/box_bilge.md); the cases keep Euler
     time_scheme: str = _spec("Euler", kind=str, doc="the time derivative's scheme: Euler "
                              "(first order), or \"CrankNicolson ψ\" with 0 ≤ ψ ≤ 1 (second "
                              "order at ψ = 1; any ψ needs the shared fvSolution's "
@@ -231,8 +231,8 @@ class MeshSettings:
     coarse level); ``[mesh.gmsh]`` the gmsh meshes'."""
 
     refinement_ratio: float = _spec(math.sqrt(2.0), minimum=1.0, maximum=4.0,
-                                    doc="r: cell counts grow by it from one level to the next, the"
-                                        " time step shrinks by it")
+                                    doc="r: cell sizes and the largest time step shrink by "
+                                        "it from one level to the next")
     mesher: str = _spec("gmsh", kind=str, doc="gmsh (any body) or ogrid (a circle)")
     square_half_size: float | None = _spec(None, minimum=0.0,
                                            doc="m, O-grid: half the side of the square around the "

@@ -56,14 +56,17 @@ def decay_overlay(case, theory: TheorySummary, dof: str, model: ModelFit | None 
 
 def _case_folder(run: Path) -> Path:
     """The folder of the case a run was made of: the one its info.json names (any case's),
-    else cases/<the run's case folder name> (a run recorded before info.json named it)."""
+    else cases/<the run's case folder name> (a run recorded before info.json named it, or
+    a case folder that has moved since)."""
     import json
 
     try:
         named = json.loads((run / layout.MARKERS / "info.json").read_text()).get("case_path")
     except (OSError, ValueError):
         named = None
-    return Path(named) if named else layout.CASES_DIR / run.parent.name
+    if named and (Path(named) / "case.toml").is_file():
+        return Path(named)
+    return layout.CASES_DIR / run.parent.name  # a moved folder, or a built-in case's run
 
 
 def run_overlay(run: Path, dof: str, duration: float, **options) -> tuple[Overlay | None, str]:

@@ -333,8 +333,8 @@ def run_pictures(run_dir, *, colour="velocity", times=None) -> list[tuple[Path, 
     run_dir = Path(run_dir)
     case_name, level = run_dir.parent.name, run_dir.name
     if not layout.is_finished(run_dir):
-        raise InputError(f"{case_name} --level {level}: no finished run in {run_dir}; valid is "
-                         "a finished run (floatfoam run CASE with its level finishes it)")
+        raise InputError(f"RUN {run_dir}: no finished run there; valid is a finished run "
+                         "(floatfoam run CASE with its level finishes it)")
     _check_colour(colour)
     run = open_run(run_dir)
     for t in times or ():  # every time checked before anything is written

@@ -94,9 +94,13 @@ def run(args) -> int:
         raise InputError(f"--equilibrium {args.equilibrium}: a level in one DoF's units, and "
                          f"the run released {', '.join(choice.dofs)}; valid is --dof with it, "
                          "or 'tail'")
-    results = [_analyse(args, path, motion, dof, choice.reason,
-                        _plot_path(args.plot, dof) if several else args.plot)
-               for dof in choice.dofs]
+    analysed = [_analyse(args, path, motion, dof, choice.reason) for dof in choice.dofs]
+    results = []  # every DoF analysed (and refused, if it is) before any figure is written
+    for dof, (data, drawn) in zip(choice.dofs, analysed, strict=True):
+        if args.plot:
+            _draw(args, path, dof, data, drawn, _plot_path(args.plot, dof) if several
+                  else args.plot)
+        results.append(data)
     if args.json:
         print(dump_json(results if several else results[0]))
     else:
@@ -112,8 +116,9 @@ def _plot_path(plot: str | None, dof: str) -> str | None:
     return str(given.with_name(f"{given.stem}-{dof}{given.suffix}"))
 
 
-def _analyse(args, path, motion: dict, dof: str, reason: str, plot: str | None) -> dict:
-    """The decay analysis of one DoF of the record, as :func:`decay_dict` plus its source."""
+def _analyse(args, path, motion: dict, dof: str, reason: str) -> tuple[dict, tuple]:
+    """The decay analysis of one DoF of the record, as :func:`decay_dict` plus its source (and
+    its extinction curve when asked), and what its figures are drawn from."""
     from floatfoam.analysis.decay import analyse_decay, decay_dict
     from floatfoam.motion import dof_series, file_unit
 
@@ -125,32 +130,37 @@ def _analyse(args, path, motion: dict, dof: str, reason: str, plot: str | None) 
     data = {"source": str(path), **decay_dict(result, scale=scale, unit=unit, dof=dof),
             "dof_from": reason}
     curve = None
-    if args.extinction or args.cubic:  # before any figure: a record too short writes none
+    if args.extinction or args.cubic:
         from floatfoam.analysis.extinction import extinction_curve
 
         curve = extinction_curve(result, cubic=args.cubic, name=f"{dof} of {path}")
         data["extinction"] = curve.to_dict(unit=unit, scale=scale)
-    if plot:
-        from floatfoam.analysis.overlay import run_overlay
-        from floatfoam.analysis.plots import plot_decay
-        from floatfoam.analysis.released import run_folder
+    return data, (time, value, result, curve, scale, unit)
 
-        overlay, why = None, ""
-        if run_folder(path) is not None:  # a run of a case: Cummins' model beside it
-            overlay, why = run_overlay(run_folder(path), dof, float(time[-1]), drift=args.drift,
-                                       quadratic=args.quadratic, t_start=args.start)
-        if why:
-            print(f"note: the figure has no model beside the record: {why}", file=sys.stderr)
-        data["plot"] = str(plot_decay(plot, time, value, result, overlay=overlay, scale=scale,
-                                      unit=unit, title=f"{path}: {dof} decay"))
-        if curve is not None:
-            from floatfoam.analysis.plots import plot_extinction
 
-            given = Path(plot)
-            data["extinction"]["plot"] = str(plot_extinction(
-                given.with_name(f"{given.stem}-extinction{given.suffix}"), curve, scale=scale,
-                unit=unit, title=f"{path}: {dof} extinction curve"))
-    return data
+def _draw(args, path, dof: str, data: dict, drawn: tuple, plot: str) -> None:
+    """The decay figure (and the extinction figure) of one analysed DoF, their paths in
+    ``data``."""
+    from floatfoam.analysis.overlay import run_overlay
+    from floatfoam.analysis.plots import plot_decay
+    from floatfoam.analysis.released import run_folder
+
+    time, value, result, curve, scale, unit = drawn
+    overlay, why = None, ""
+    if run_folder(path) is not None:  # a run of a case: Cummins' model beside it
+        overlay, why = run_overlay(run_folder(path), dof, float(time[-1]), drift=args.drift,
+                                   quadratic=args.quadratic, t_start=args.start)
+    if why:
+        print(f"note: the figure has no model beside the record: {why}", file=sys.stderr)
+    data["plot"] = str(plot_decay(plot, time, value, result, overlay=overlay, scale=scale,
+                                  unit=unit, title=f"{path}: {dof} decay"))
+    if curve is not None:
+        from floatfoam.analysis.plots import plot_extinction
+
+        given = Path(plot)
+        data["extinction"]["plot"] = str(plot_extinction(
+            given.with_name(f"{given.stem}-extinction{given.suffix}"), curve, scale=scale,
+            unit=unit, title=f"{path}: {dof} extinction curve"))
 
 
 def _ci(pair) -> str:

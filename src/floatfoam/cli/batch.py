@@ -60,12 +60,16 @@ def run(args) -> int:
         raise InputError(f"--out {out}: the file exists; valid is a new file (nothing is "
                          "overwritten)")
     from floatfoam.foam.render import end_time_of
-    from floatfoam.hydrostatics.fluid_domain import check_release
     from floatfoam.hydrostatics.theory import equilibrium
 
     cases = [load_case(name, args.overrides) for name in args.cases]  # each checked now
+    from floatfoam.foam.domain import plan
+    from floatfoam.foam.render import release_state
+
     for case in cases:
-        check_release(case, equilibrium(case))  # water under the keel, the release in the tank
+        state = release_state(case, equilibrium(case))  # the release in the tank
+        for level in args.levels:  # the mesh each task makes: its domain, [motion] free …
+            plan(case, level, state["pose"], local=args.hostfile is None)
         end_time_of(case)  # run.end_time, or the theory's periods to set it from
     check_run_folders(cases, args.levels, args.np)
     tasks = [(str(case.path), level) for case in cases for level in args.levels]

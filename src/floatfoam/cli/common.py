@@ -57,9 +57,15 @@ def resolve_run(text: str, level: str | None, *, csv: bool = False):
     from floatfoam import layout
     from floatfoam.errors import InputError
 
+    text = text.rstrip("/") or text
     path = Path(text)
+    if path.name == "case.toml" and path.is_file():  # a case file names its case
+        text, path = str(path.parent), path.parent
     if csv and path.is_file():
-        return path
+        if level is not None:
+            raise InputError(f"--level {level}: {text} is a motion CSV, whose level is its "
+                             "own; valid is --level with a CASE only")
+        return path.resolve()
     bare = path.name == text and text not in (".", "..")
     is_case = (path / "case.toml").is_file() or (
         bare and (layout.CASES_DIR / text / "case.toml").is_file())
@@ -67,7 +73,7 @@ def resolve_run(text: str, level: str | None, *, csv: bool = False):
         if level is not None:
             raise InputError(f"--level {level}: {text} is a run folder, whose level is its "
                              "own; valid is --level with a CASE only")
-        return path
+        return path.resolve()  # its case and level are read from its name
     level = level or layout.LEVELS[0]
     if level not in layout.LEVELS:
         raise InputError(f"--level {level!r}: valid levels are {', '.join(layout.LEVELS)}")

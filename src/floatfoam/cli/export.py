@@ -15,7 +15,7 @@ def register(sub) -> None:
     add_run_argument(p)
     p.add_argument("--vtk", action="store_true",
                    help="VTK files of every written time, the mesh moved as the body moved "
-                        "(foamToVTK; the one format offered, so far)")
+                        "(foamToVTK; the one format offered)")
     p.add_argument("--force", action="store_true",
                    help="delete an existing RUN/VTK first (without it, it is refused)")
     p.set_defaults(func=run)

@@ -370,7 +370,7 @@ def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool 
     A study of the mesh motion, which a study of mesh levels cannot see since the motion is
     the same on every level: the damping ratio of the laboratory sphere's 0.3 D drop rose from
     0.066 to 0.109 as the distances were widened from 0.09 and 0.48 m to 0.2 and 1.2 m
-    (cases/lab_sphere/README.md)."""
+    (docs/studies/cases/lab_sphere.md)."""
     check_morphing(factor)
     if factor == 1:
         return case

@@ -76,7 +76,7 @@ def check_free_cores(np_: int, hostfile: Path | None, *, label: str = "",
     share = (busy + np_) / cores
     where = f"[{label}] " if label else ""
     print(f"{where}warning: {busy} solver rank(s) of other runs already use this machine's "
-          f"{cores} cores: this run's {np_} rank(s) will share them, each about {share:.1g} × "
+          f"{cores} cores: this run's {np_} rank(s) will share them, each about {share:.2g} × "
           "slower than alone (the ranks yield a core they wait on: Open MPI's "
           "mpi_yield_when_idle)", file=sys.stderr)
     return True

@@ -5,8 +5,8 @@
   (:mod:`floatfoam.potential.rigid_body`);
 * ``cummins``: Cummins (1962) with A∞ and the radiation memory from the potential-flow
   coefficients (:mod:`floatfoam.potential.radiation`), linear or nonlinear restoring, in the
-  DoFs a free body moves in (:func:`floatfoam.dofs.free_dofs`: sway follows a roll, surge a
-  pitch, as in the CFD) or those ``dofs`` names.
+  DoFs the body is free in, as in the CFD (:func:`floatfoam.dofs.free_dofs`: the case's
+  ``[motion] free``, else sway follows a roll, surge a pitch) or those ``dofs`` names.
 
 The body is released from rest at its equilibrium displaced by the case's [release] offsets
 (heave of G in m, heel and trim in degrees). The series has the motion-CSV columns
@@ -201,15 +201,17 @@ def _cummins(case, eq, g_pos, stiffness, x0, t, nonlinear_restoring, coefficient
 
     chosen = list(dofs) if dofs is not None else free_dofs(
         case.release, chosen=case.settings.motion.free)
+    given = "--dofs " + ",".join(d.name for d in chosen) if dofs is not None else \
+        f"motion.free = {[d.name for d in chosen]!r}"  # the DoFs' source, for the errors
     missing = [d.name for d in released(case.release) if d not in chosen]
     if missing:
-        raise InputError(f"--dofs {','.join(d.name for d in chosen)}: the release displaces "
-                         f"{', '.join(missing)}; valid lists include it")
+        raise InputError(f"{given}: the release displaces {', '.join(missing)}; valid lists "
+                         "include it")
     coef = coefficients or radiation_coefficients(case, eq)
     uncovered = [d.name for d in chosen if not coef.covered[d.index]]
     if uncovered:
-        raise InputError(f"--dofs {','.join(d.name for d in chosen)}: {', '.join(uncovered)} "
-                         f"not solved by the potential flow ({coef.method}); valid are "
+        raise InputError(f"{given}: {', '.join(uncovered)} not solved by the potential flow "
+                         f"({coef.method}); valid are "
                          + ", ".join(d.name for d in DOFS + HORIZONTAL if coef.covered[d.index]))
     pick = [d.index for d in chosen]
     block = np.ix_(pick, pick)
