@@ -249,3 +249,21 @@ def test_analyse_plot_draws_a_run_beside_cummins_model(tmp_path, capsys):
     (tmp_path / "lone.csv").write_bytes((run / "motion.csv").read_bytes())
     assert main(["analyse", str(tmp_path / "lone.csv"), "--plot", str(tmp_path / "lone.png")]) == 0
     assert MODEL not in Image.open(tmp_path / "lone.png").text["Description"]
+
+
+def test_a_measured_period_alone_is_not_drawn_as_no_damping(tmp_path):
+    """A reference with a period and no damping (the flume's decay tests) is drawn at the
+    record's fitted ζ and says so; with a measured ζ, at that one."""
+    from PIL import Image
+
+    from floatfoam.analysis.plots import Overlay, plot_decay
+
+    t = np.linspace(0.0, 6.0, 1201)
+    x = 0.1 * np.exp(-0.3 * t) * np.cos(2 * math.pi * t / 1.2)
+    result = analyse_decay(t, x)
+    for damping, says in ((None, "ζ not measured (the fit's"), (0.05, "ζ = 0.05")):
+        overlay = Overlay(reference_period=1.2, reference_damping=damping,
+                          reference_source="flume")
+        path = plot_decay(tmp_path / f"{damping}.png", t, x, result, overlay=overlay)
+        legend = Image.open(path).text["Description"]
+        assert "reference flume: T = 1.2 s, " + says in legend, legend

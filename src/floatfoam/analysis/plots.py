@@ -4,7 +4,8 @@ One figure per record, four panels:
 
 * the motion beside Cummins' model (:mod:`floatfoam.analysis.cummins`: its series, drawn about
   the record's equilibrium), the least-squares fit, any measured record, a damped reference
-  curve when the case has a measured period (and damping), and the undamped linear theory
+  curve when the case has a measured period (at its measured damping, else at the fit's, said
+  so in its label), and the undamped linear theory
   x_eq + x₀ cos(2π (t − t₀)/T) from the release offset x₀ as a thin dotted line (no added
   mass, no damping: kept to show what the fluid's inertia changes);
 * the amplitude envelope: |extrema| on a log scale with the fitted exponential A e^{−ζω_n s};
@@ -96,12 +97,14 @@ def _time_panel(ax, time, value, result: DecayResult, overlay: Overlay, scale, u
                 label=f"linear theory, no added mass, undamped: T = "
                       f"{overlay.theory_period:.4g} s")
     if overlay.reference_period:
-        zeta = overlay.reference_damping or 0.0
-        label = f"reference {overlay.reference_source}".strip()
+        measured = overlay.reference_damping is not None
+        zeta = overlay.reference_damping if measured else fit.zeta  # a period alone: the
+        label = f"reference {overlay.reference_source}".strip()  # record's ζ, said so
+        damping = f"ζ = {zeta:.3g}" if measured else f"ζ not measured (the fit's, {zeta:.3g})"
         ax.plot(time, eq + free_decay_curve(time, time[0], offset, overlay.reference_period,
                                             zeta),
                 color="C2", lw=1, ls="-.",
-                label=f"{label}: T = {overlay.reference_period:.4g} s, ζ = {zeta:.3g}")
+                label=f"{label}: T = {overlay.reference_period:.4g} s, {damping}")
     if overlay.measured_time is not None:
         shown = (overlay.measured_time >= time[0]) & (overlay.measured_time <= time[-1])
         ax.plot(overlay.measured_time[shown], eq + overlay.measured_offset[shown],
