@@ -6,9 +6,11 @@ cd "$(dirname "$0")/.."
 
 # OpenFOAM v1912 (ESI) from Debian, MPI, the headless GL/X libraries that the gmsh and vtk
 # wheels load, python3-venv for the venv, shellcheck for the lint, g++ and bzip2 to rebuild
-# interFoam from Debian's source package (scripts/build_solver.sh).
+# interFoam from Debian's source package (scripts/build_solver.sh), Slurm's daemons, client and
+# munge for the cluster tests' one-node Slurm (scripts/slurm_local.sh; none is started here).
 APT_PACKAGES="openfoam openmpi-bin libglu1-mesa libgl1 libxcursor1 libxft2 libxinerama1
-libgomp1 libegl1 libgl1-mesa-dri python3-venv shellcheck g++ bzip2 dpkg-dev"
+libgomp1 libegl1 libgl1-mesa-dri python3-venv shellcheck g++ bzip2 dpkg-dev
+munge slurmctld slurmd slurm-client"
 
 missing=""
 for pkg in $APT_PACKAGES; do

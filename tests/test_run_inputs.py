@@ -206,7 +206,8 @@ def test_write_interval_divides_end_time():
     assert render.write_interval(1.0, 1.0) == 1.0
 
 
-def test_batch_refuses_bad_input_and_never_overwrites(tmp_path, capsys):
+def test_batch_refuses_bad_input_and_never_overwrites(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path / "build"))
     out = tmp_path / "sweep.sh"
     assert main(["batch", "cylinder_heave", "--levels", "ultrafine", "--out", str(out)]) == 2
     assert main(["batch", "cylinder_heave", "--time", "soon", "--out", str(out)]) == 2
@@ -218,7 +219,12 @@ def test_batch_refuses_bad_input_and_never_overwrites(tmp_path, capsys):
                  "--np", "2", "--out", str(out)]) == 0
     text = out.read_text()
     assert "#SBATCH --array=0-2" in text and "#SBATCH --ntasks=2" in text
-    assert text.count("$'\\t'") == 3 + 1 and "--np 2" in text  # 3 tasks, IFS
+    assert [text.count(f"  {i})  # cylinder_heave {level}\n") for i, level in
+            enumerate(("coarse", "medium", "fine"))] == [1, 1, 1]  # a branch per task
+    assert text.count('--np "${SLURM_NTASKS:-2}"') == 3  # Slurm's allocation, else --np
+    for check in (["bash", "-n"], ["shellcheck"]):  # valid bash, no quoting slip
+        proc = subprocess.run([*check, str(out)], capture_output=True, text=True)
+        assert proc.returncode == 0, proc.stdout + proc.stderr
     assert main(["batch", "cylinder_heave", "--out", str(out)]) == 2  # exists: refused
     assert "nothing is overwritten" in capsys.readouterr().err
 

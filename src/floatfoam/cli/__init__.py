@@ -17,7 +17,7 @@ from floatfoam import scratch
 from floatfoam.errors import ComputationError, InputError
 from floatfoam.interrupts import SignalInterruptError, signals_interrupt
 
-COMMANDS = ["theory", "gz", "mesh", "run", "batch", "analyse", "report", "potential",
+COMMANDS = ["theory", "gz", "mesh", "run", "batch", "status", "analyse", "report", "potential",
             "decay_model", "validate", "pictures", "export"]
 
 

@@ -38,6 +38,12 @@ def register(sub) -> None:
     motion.add_argument("--no-morphing", action="store_true",
                         help="no mesh-motion run: U_num from the levels and the time step "
                         "alone")
+    p.add_argument("--slurm", action="store_true",
+                   help="submit the study to Slurm instead: its runs as one array (a task "
+                   "each, --np ranks) and the study (GCI, validation.json) as a job after it; "
+                   "prints the job id for `floatfoam status`")
+    p.add_argument("--time", default="24:00:00", metavar="D-HH:MM:SS",
+                   help="with --slurm: the time limit of each run's task (default 24:00:00)")
     p.add_argument("--no-run", action="store_true",
                    help="analyse the finished runs only (made with this command's case file "
                    "and --set: others are refused); run nothing")
@@ -68,6 +74,9 @@ def run(args) -> int:
     build = layout.build_dir()
     morphing = study_morphing(case.name, build, args.morphing, skip=args.no_morphing)
     runs = plan(args.time_level, morphing)
+    if args.slurm and args.no_run:
+        raise InputError("--slurm with --no-run: valid is one of them (--slurm submits the "
+                         "runs; --no-run analyses finished ones)")
     failed = []
     if not args.no_run:
         eq = equilibrium(case)
@@ -75,6 +84,8 @@ def run(args) -> int:
             check_run(case, level, args.np, eq, build_dir=build, time_step_divisor=divisor,
                       morphing=factor)
         names = [layout.run_name(*run) for run in runs]
+        if args.slurm:
+            return _submit(case, args, runs, morphing)
         print(f"[validate {case.name}] {len(runs)} runs on {args.np} rank(s): "
               f"{', '.join(names)} (finished ones are reused, interrupted ones resume)",
               file=sys.stderr)
@@ -110,3 +121,42 @@ def run(args) -> int:
         print(f"floatfoam validate: failed: {', '.join(failed)} (the study holds the others)",
               file=sys.stderr)
     return 1 if failed else 0
+
+
+def _submit(case, args, runs, morphing: float | None) -> int:
+    """The study on Slurm: every run a task of one array, then ``validate --no-run`` (the
+    study of what finished, as the local command writes it) as a job after the array."""
+    from floatfoam import layout
+    from floatfoam.cluster import jobs, slurm
+    from floatfoam.foam.render import end_time_of
+
+    slurm.check_time(args.time)
+    slurm.require_sbatch()
+    end = end_time_of(case)
+    tasks = [slurm.Task(case.name, layout.run_name(level, divisor, factor),
+                        slurm.run_command(case.path, level, args.np, args.overrides,
+                                          divisor=divisor, morphing=factor))
+             for level, divisor, factor in runs]
+    outputs = jobs.jobs_dir()
+    script = jobs.new_path(None, f"validate-{case.name}")
+    script.write_text(slurm.array_script(tasks, np_=args.np, time=args.time,
+                                         name=f"validate-{case.name}", out_dir=outputs))
+    job = slurm.sbatch(script)
+    record = jobs.make_record(job, "validate", case.name, script, tasks, [end] * len(tasks))
+    jobs.write_record(record)
+    study = [slurm.executable(), "validate", str(case.path), "--np", str(args.np), "--no-run",
+             "--time-level", args.time_level,
+             *(["--no-morphing"] if morphing is None else ["--morphing", f"{morphing:g}"])]
+    for item in args.overrides:
+        study += ["--set", item]
+    gather = jobs.new_path(None, f"validate-{case.name}-study")
+    gather.write_text(slurm.single_script(tuple(study), time="1:00:00",
+                                          name=f"validate-{case.name}-study", out_dir=outputs))
+    record["gather"] = slurm.sbatch(gather, after=job)
+    jobs.write_record(record)
+    print(f"[validate {case.name}] {len(tasks)} runs submitted as job {job} ({script}), the "
+          f"study as job {record['gather']} after it: "
+          f"{layout.case_build_dir(case.name) / 'validation'}; follow with "
+          f"`floatfoam status {job}`")
+    return 0
+

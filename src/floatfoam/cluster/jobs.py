@@ -1,0 +1,225 @@
+"""Submitted jobs: their records in ``<build>/slurm/``, each task's state and progress from the
+queue and from its run's own folder, and the summary of a finished sweep.
+
+A record (``<build>/slurm/<job>.json``) holds what was submitted: the array's job id, its
+tasks (case, run folder, command), the gather job after it, the script. The state of a task is
+the queue's while Slurm holds it, else its run's: finished (the driver's marker), stopped at
+the time it reached, or never started. Its simulated time and rate come from the solver's log.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+from pathlib import Path
+
+from floatfoam import layout
+from floatfoam.cluster.slurm import Task
+from floatfoam.errors import InputError
+from floatfoam.jsonfile import dump_json
+
+JOBS_DIR = "slurm"
+TAIL_BYTES = 1 << 20  # the end of the solver's log read for its progress
+_TIME = re.compile(r"^Time = ([-+0-9.eE]+)\s*$")
+_CLOCK = re.compile(r"ClockTime = ([0-9.eE+-]+) s")
+
+
+def jobs_dir(build: Path | None = None) -> Path:
+    return Path(build or layout.build_dir()) / JOBS_DIR
+
+
+def new_path(build: Path | None, stem: str, suffix: str = ".sh") -> Path:
+    """A new file ``<build>/slurm/<stem>-<n><suffix>`` (n the first free number from 1)."""
+    folder = jobs_dir(build)
+    folder.mkdir(parents=True, exist_ok=True)
+    n = 1
+    while (folder / f"{stem}-{n}{suffix}").exists():
+        n += 1
+    return folder / f"{stem}-{n}{suffix}"
+
+
+def record_path(job: str, build: Path | None = None) -> Path:
+    return jobs_dir(build) / f"{job}.json"
+
+
+def write_record(record: dict, build: Path | None = None) -> Path:
+    """Write (or update) a job's record whole: a reader never sees half of it."""
+    path = record_path(record["job"], build)
+    fresh = path.with_name(f".{path.name}.new")
+    fresh.write_text(dump_json(record) + "\n")
+    os.replace(fresh, path)
+    return path
+
+
+def make_record(job: str, kind: str, label: str, script: Path, tasks: list[Task],
+                end_times: list[float | None]) -> dict:
+    return {"job": job, "kind": kind, "label": label, "script": str(script), "gather": None,
+            "tasks": [{"case": t.case, "run": t.run, "argv": list(t.argv), "end_time": e}
+                      for t, e in zip(tasks, end_times, strict=True)]}
+
+
+def read_records(jobs: list[str] | None = None, build: Path | None = None) -> list[dict]:
+    """The records of ``jobs`` (each must exist), or every record, newest job first."""
+    folder = jobs_dir(build)
+    if jobs:
+        records = []
+        for job in jobs:
+            path = record_path(job, build)
+            if not path.is_file():
+                known = ", ".join(r["job"] for r in read_records(None, build)) or "none"
+                raise InputError(f"JOB {job}: no job of floatfoam's submitted from build "
+                                 f"folder {layout.build_dir() if build is None else build}; "
+                                 f"valid: {known}")
+            records.append(json.loads(path.read_text()))
+        return records
+    paths = [p for p in folder.glob("*.json") if p.stem.isdigit()] if folder.is_dir() else []
+    return [json.loads(p.read_text()) for p in sorted(paths, key=lambda p: -int(p.stem))]
+
+
+def progress(run_dir: Path) -> tuple[float | None, float | None]:
+    """(simulated time reached, simulated seconds per wall second) of the solver's log in
+    ``run_dir``: the last ``Time =`` and the rate over the log's end (since its last start);
+    None for what the log does not say."""
+    log = Path(run_dir) / "log.interFoam"
+    if not log.is_file():
+        return None, None
+    with open(log, "rb") as fh:
+        fh.seek(max(0, log.stat().st_size - TAIL_BYTES))
+        text = fh.read().decode("utf-8", "replace")
+    from floatfoam.foam.motionlog import RESUMED
+
+    text = text.rsplit(RESUMED, 1)[-1]
+    points, current = [], None
+    for line in text.splitlines():
+        found = _TIME.match(line)
+        if found:
+            current = float(found.group(1))
+            continue
+        clock = _CLOCK.search(line)
+        if clock and current is not None:
+            points.append((current, float(clock.group(1))))
+    if not points:
+        return current, None
+    (t0, c0), (t1, c1) = points[0], points[-1]
+    rate = (t1 - t0) / (c1 - c0) if c1 > c0 and t1 > t0 else None
+    return t1, rate
+
+
+def task_rows(record: dict, queued: dict[str, tuple[str, str]] | None,
+              build: Path | None = None) -> list[dict]:
+    """One row per task of a record: its id, case, run, state, time reached, end time, ETA
+    (s)."""
+    rows = []
+    for i, task in enumerate(record["tasks"]):
+        ident = f"{record['job']}_{i}"
+        run_dir = layout.case_build_dir(task["case"], build) / task["run"]
+        reached, rate = progress(run_dir)
+        end = _end_time(run_dir) or task.get("end_time")
+        if queued is not None and ident in queued:
+            state, reason = queued[ident]
+            state = state.lower() + (f" ({reason})" if state == "PENDING" and reason not in
+                                     ("None", "") else "")
+        elif layout.is_finished(run_dir):
+            state = "finished"
+        elif reached is not None:
+            state = "stopped" if queued is not None else "not running here"
+        else:
+            state = "no run" if queued is not None else "not started here"
+        running = state.startswith("running")
+        eta = (end - reached) / rate if running and rate and end and reached is not None \
+            else None
+        rows.append({"task": ident, "case": task["case"], "run": task["run"], "state": state,
+                     "time": reached, "end_time": end, "eta_s": eta,
+                     "run_dir": str(run_dir)})
+    return rows
+
+
+def gather_state(record: dict, queued: dict[str, tuple[str, str]] | None) -> str | None:
+    gather = record.get("gather")
+    if not gather:
+        return None
+    if queued is not None and gather in queued:
+        state, reason = queued[gather]
+        return state.lower() + (f" ({reason})" if state == "PENDING" else "")
+    return "ended" if queued is not None else "unknown here"
+
+
+def _end_time(run_dir: Path) -> float | None:
+    from floatfoam.foam.extension import own_end_time
+
+    return own_end_time(run_dir)
+
+
+def clock(seconds: float | None) -> str:
+    if seconds is None or not math.isfinite(seconds):
+        return "—"
+    seconds = int(round(seconds))
+    return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
+
+
+def table(rows: list[dict]) -> list[str]:
+    """The status table of a record's rows (plain text, aligned)."""
+    head = ("task", "case", "run", "state", "t / end (s)", "ETA")
+    body = [(r["task"], r["case"], r["run"], r["state"],
+             f"{_num(r['time'])} / {_num(r['end_time'])}", clock(r["eta_s"])) for r in rows]
+    widths = [max(len(str(x)) for x in col) for col in zip(head, *body, strict=True)]
+    return ["  ".join(str(x).ljust(w) for x, w in zip(line, widths, strict=True)).rstrip()
+            for line in (head, *body)]
+
+
+def _num(value: float | None) -> str:
+    return "—" if value is None else f"{value:.4g}"
+
+
+def summary(record: dict, build: Path | None = None) -> list[dict]:
+    """Each task's finished run analysed: the released DoFs' damped period and damping ratio
+    (or why not), its cells and solver wall time."""
+    from floatfoam.analysis.decay import analyse_decay
+    from floatfoam.analysis.released import choose
+    from floatfoam.motion import dof_series, file_unit, read_motion
+
+    out = []
+    for row in task_rows(record, None, build):
+        run_dir = Path(row["run_dir"])
+        entry = {"task": row["task"], "case": row["case"], "run": row["run"],
+                 "finished": row["state"] == "finished", "time": row["time"], "dofs": {}}
+        info = run_dir / layout.MARKERS / "info.json"
+        if info.is_file():
+            entry["cells"] = json.loads(info.read_text()).get("cells")
+        motion_csv = run_dir / "motion.csv"
+        if entry["finished"] and motion_csv.is_file():
+            motion = read_motion(motion_csv)
+            try:
+                dofs = choose(motion_csv, motion).dofs
+            except InputError as err:
+                entry["note"] = str(err)
+                dofs = ()
+            for dof in dofs:
+                scale, unit = file_unit(dof)
+                t, x = dof_series(motion, dof)
+                try:
+                    fit = analyse_decay(t, x, units=(scale, unit), name=dof).summary()
+                    entry["dofs"][dof] = {"period_s": fit["period_mean"],
+                                          "damping_ratio": fit["damping_ratio"]}
+                except InputError as err:
+                    entry["dofs"][dof] = {"error": str(err)}
+        out.append(entry)
+    return out
+
+
+def summary_markdown(record: dict, entries: list[dict]) -> str:
+    lines = [f"# Job {record['job']}: {record['label']}", "",
+             "| task | case | run | finished | cells | DoF | T_d (s) | ζ |",
+             "|---|---|---|---|---|---|---|---|"]
+    for e in entries:
+        first = [e["task"], e["case"], e["run"], "yes" if e["finished"] else
+                 f"no ({_num(e['time'])} s)", str(e.get("cells") or "—")]
+        if not e["dofs"]:
+            lines.append("| " + " | ".join([*first, "—", "—", e.get("note", "—")]) + " |")
+        for dof, fit in e["dofs"].items():
+            values = [f"{fit['period_s']:.4f}", f"{fit['damping_ratio']:.4f}"] \
+                if "period_s" in fit else ["—", fit["error"].split(";")[0].replace("|", "/")]
+            lines.append("| " + " | ".join([*first, dof, *values]) + " |")
+    return "\n".join(lines) + "\n"
