@@ -22,14 +22,22 @@ alive() {
 }
 
 stop() {
-  if [ -f "$conf" ] && [ -S "$dir/munge/munge.socket" ]; then
+  if [ -f "$conf" ] && [ -S "$dir/munge/munge.socket" ] && [ -f "$dir/slurmctld.pid" ]; then
+    # the jobs first, and wait (up to a minute) until Slurm has stopped them: none of their
+    # processes outlives the daemons
     SLURM_CONF=$conf scancel --quiet --user=root 2>/dev/null || true
+    for _ in $(seq 600); do
+      SLURM_CONF=$conf squeue --noheader --format=%T 2>/dev/null | grep -q . || break
+      sleep 0.1
+    done
   fi
   pids=""
   for pidfile in "$dir/slurmd.pid" "$dir/slurmctld.pid" "$dir/munge/munged.pid"; do
     [ -f "$pidfile" ] || continue
     pid=$(cat "$pidfile")
     rm -f "$pidfile"
+    name=$(basename "$pidfile" .pid)  # a pid file left by a crash may name another process now
+    [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$name" ] || continue
     kill "$pid" 2>/dev/null && pids="$pids $pid"
   done
   for pid in $pids; do  # each given 5 s to end, then killed
@@ -51,7 +59,7 @@ ports = []
 for _ in range(2):
     s = socket.socket(); s.bind(("127.0.0.1", 0)); ports.append(s)
 print(*(s.getsockname()[1] for s in ports))')
-  node=$(hostname -s)
+  node=$(slurmd -C | sed -n 's/^NodeName=\([^ ]*\).*/\1/p' | head -n 1)
   cat > "$conf" <<CONF
 ClusterName=floatfoam-local
 SlurmctldHost=$node(127.0.0.1)
@@ -78,9 +86,10 @@ MpiDefault=none
 ReturnToService=2
 KillWait=30
 MinJobAge=600
-NodeName=$node NodeAddr=127.0.0.1 CPUs=$(nproc) State=UNKNOWN
+$(slurmd -C | head -n 1) NodeAddr=127.0.0.1 State=UNKNOWN
 PartitionName=local Nodes=$node Default=YES MaxTime=INFINITE State=UP
 CONF
+  trap stop ERR  # a daemon that does not start: the others are stopped too
   munged --force --socket="$dir/munge/munge.socket" --key-file=/etc/munge/munge.key \
     --pid-file="$dir/munge/munged.pid" --log-file="$dir/munge/munged.log" \
     --seed-file="$dir/munge/munged.seed"

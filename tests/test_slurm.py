@@ -76,7 +76,7 @@ def test_slurm_array_requeued_task_resumes_and_matches_a_local_run(tmp_path, clu
                      "--out", str(script), "--submit", env=env)
     assert made.returncode == 0, made.stderr
     (record,) = jobs.read_records(None, build)
-    job, gather = record["job"], record["gather"]
+    job, gather, folder = record["job"], record["after"], Path(record["folder"])
     assert f"submitted as job {job}" in made.stdout and gather
 
     coarse = build / CASE / "coarse"
@@ -96,7 +96,7 @@ def test_slurm_array_requeued_task_resumes_and_matches_a_local_run(tmp_path, clu
     assert release.returncode == 0, release.stderr
     wait_until(lambda: not queued([job, gather], env), 600, "the array and its summary job")
 
-    output = (build / "slurm" / f"{job}_0.out").read_text()
+    output = (folder / f"{job}_0.out").read_text()
     assert "DUE TO JOB REQUEUE" in output  # the task was stopped by the requeue ...
     log = (coarse / "log.interFoam").read_text()
     assert RESUMED in log  # ... and its second start resumed the run, set nothing aside
@@ -105,7 +105,7 @@ def test_slurm_array_requeued_task_resumes_and_matches_a_local_run(tmp_path, clu
     lines = status.stdout.splitlines()
     assert sum("finished  0.1 / 0.1" in line for line in lines) == 2, status.stdout
     assert f"then job {gather} (summary): ended" in status.stdout
-    summary = json.loads((build / "slurm" / f"{job}-summary.json").read_text())
+    summary = json.loads((folder / "summary.json").read_text())
     assert [(e["run"], e["finished"], e["cells"] > 0) for e in summary] == \
         [("coarse", True, True), ("medium", True, True)]
 
@@ -134,7 +134,7 @@ def test_slurm_array_requeued_task_resumes_and_matches_a_local_run(tmp_path, clu
     assert again.returncode == 0, again.stderr
     second = again.stdout.strip()
     for task in (0, 1):
-        text = (build / "slurm" / f"{second}_{task}.out").read_text()
+        text = (folder / f"{second}_{task}.out").read_text()
         assert "holds a finished run" in text and "s to simulate" not in text, text
 
 
@@ -148,14 +148,14 @@ def test_slurm_validation_study_as_an_array_and_a_dependent_study_job(tmp_path, 
     (record,) = jobs.read_records(None, tmp_path)
     runs = ["coarse", "medium", "fine", "medium-dt2", "coarse-morph1.5"]
     assert [t["run"] for t in record["tasks"]] == runs and record["kind"] == "validate"
-    wait_until(lambda: not queued([record["job"], record["gather"]], env), 600,
+    wait_until(lambda: not queued([record["job"], record["after"]], env), 600,
                "the study's runs and the study")
     study = json.loads((tmp_path / CASE / "validation" / "validation.json").read_text())
     assert study["runs"] == runs  # every run finished with the command's settings (stamps)
     for run in runs:
         assert is_finished(tmp_path / CASE / run)
         assert len(list((tmp_path / CASE / run).glob("processor[0-9]*"))) == 2
-    gathered = (tmp_path / "slurm" / f"{record['gather']}.out").read_text()
+    gathered = (Path(record["folder"]) / f"{record['after']}.out").read_text()
     assert "written: " in gathered and "validation.json" in gathered
 
 
@@ -166,8 +166,11 @@ def test_submission_needs_sbatch_and_writes_nothing_without_it(tmp_path, monkeyp
     assert main(["batch", CASE, "--out", str(out), "--submit"]) == 2
     assert "no `sbatch` on PATH" in capsys.readouterr().err and not out.exists()
     assert main(["validate", CASE, "--slurm", "--no-run"]) == 2
+    assert main(["validate", CASE, "--time", "1:00:00"]) == 2  # a time limit needs --slurm
     assert main(["validate", CASE, "--slurm", "--time", "soon"]) == 2
     assert "--time 'soon'" in capsys.readouterr().err
+    assert main(["validate", CASE, "--slurm"]) == 2
+    assert "no `sbatch` on PATH" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []  # nothing written
     assert main(["status"]) == 0
     assert "no job submitted from" in capsys.readouterr().out

@@ -36,8 +36,8 @@ def register(sub) -> None:
                    help="script to write (default floatfoam-batch.sh; never overwritten)")
     p.add_argument("--submit", action="store_true",
                    help="submit the script with sbatch, and after it a job writing the sweep's "
-                   "summary (<build>/slurm/<job>-summary.md); prints the job id for "
-                   "`floatfoam status`")
+                   "summary (summary.md in the submission's folder <build>/slurm/batch-<n>/, "
+                   "with the tasks' outputs); prints the job id for `floatfoam status`")
     p.set_defaults(func=run)
 
 
@@ -80,29 +80,24 @@ def run(args) -> int:
                  case.path, level, args.np, args.overrides,
                  hostfile=Path(args.hostfile) if args.hostfile else None))
              for case in cases for level in args.levels]
-    outputs = jobs.jobs_dir()
-    outputs.mkdir(parents=True, exist_ok=True)
-    out.write_text(slurm.array_script(tasks, np_=args.np, time=args.time, name="floatfoam",
-                                      out_dir=outputs))
-    out.chmod(0o755)
     what = (f"{len(tasks)} tasks ({len(cases)} cases × {len(args.levels)} levels, "
             f"{args.np} rank(s) each)")
     if not args.submit:
+        outputs = jobs.jobs_dir()
+        outputs.mkdir(parents=True, exist_ok=True)
+        out.write_text(slurm.array_script(tasks, np_=args.np, time=args.time,
+                                          name="floatfoam", out_dir=outputs))
+        out.chmod(0o755)
         print(f"{out}: {what}; submit with `sbatch {out}` (its output: {outputs}/)")
         return 0
-    job = slurm.sbatch(out)
-    record = jobs.make_record(job, "batch", f"{' '.join(args.cases)} at "
-                              f"{' '.join(args.levels)}", out.resolve(), tasks,
-                              [end_times[t.case] for t in tasks])
-    jobs.write_record(record)
-    gather = jobs.new_path(None, f"summary-{job}")
-    gather.write_text(slurm.single_script((slurm.executable(), "status", job, "--summary"),
-                                          time="1:00:00", name="floatfoam-summary",
-                                          out_dir=outputs))
-    record["gather"] = slurm.sbatch(gather, after=job)
-    jobs.write_record(record)
-    print(f"{out}: {what}; submitted as job {job}, its summary as job {record['gather']} "
-          f"after it; follow with `floatfoam status {job}` (output: {outputs}/)")
+    record = jobs.submit(tasks, kind="batch", name="batch",
+                         label=f"{' '.join(args.cases)} at {' '.join(args.levels)}",
+                         np_=args.np, time=args.time, script=out,
+                         end_times=[end_times[t.case] for t in tasks],
+                         after_argv=(slurm.executable(), "status", "--summary", "{folder}"))
+    print(f"{out}: {what}; submitted as job {record['job']}, its summary as job "
+          f"{record['after']} after it; follow with `floatfoam status {record['job']}` "
+          f"(outputs: {record['folder']}/)")
     return 0
 
 

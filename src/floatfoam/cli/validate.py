@@ -42,7 +42,7 @@ def register(sub) -> None:
                    help="submit the study to Slurm instead: its runs as one array (a task "
                    "each, --np ranks) and the study (GCI, validation.json) as a job after it; "
                    "prints the job id for `floatfoam status`")
-    p.add_argument("--time", default="24:00:00", metavar="D-HH:MM:SS",
+    p.add_argument("--time", default=None, metavar="D-HH:MM:SS",
                    help="with --slurm: the time limit of each run's task (default 24:00:00)")
     p.add_argument("--no-run", action="store_true",
                    help="analyse the finished runs only (made with this command's case file "
@@ -74,6 +74,8 @@ def run(args) -> int:
     build = layout.build_dir()
     morphing = study_morphing(case.name, build, args.morphing, skip=args.no_morphing)
     runs = plan(args.time_level, morphing)
+    if args.time is not None and not args.slurm:
+        raise InputError(f"--time {args.time}: a Slurm time limit, valid only with --slurm")
     if args.slurm and args.no_run:
         raise InputError("--slurm with --no-run: valid is one of them (--slurm submits the "
                          "runs; --no-run analyses finished ones)")
@@ -130,33 +132,23 @@ def _submit(case, args, runs, morphing: float | None) -> int:
     from floatfoam.cluster import jobs, slurm
     from floatfoam.foam.render import end_time_of
 
-    slurm.check_time(args.time)
+    args.time = slurm.check_time(args.time or "24:00:00")
     slurm.require_sbatch()
     end = end_time_of(case)
     tasks = [slurm.Task(case.name, layout.run_name(level, divisor, factor),
                         slurm.run_command(case.path, level, args.np, args.overrides,
                                           divisor=divisor, morphing=factor))
              for level, divisor, factor in runs]
-    outputs = jobs.jobs_dir()
-    script = jobs.new_path(None, f"validate-{case.name}")
-    script.write_text(slurm.array_script(tasks, np_=args.np, time=args.time,
-                                         name=f"validate-{case.name}", out_dir=outputs))
-    job = slurm.sbatch(script)
-    record = jobs.make_record(job, "validate", case.name, script, tasks, [end] * len(tasks))
-    jobs.write_record(record)
     study = [slurm.executable(), "validate", str(case.path), "--np", str(args.np), "--no-run",
              "--time-level", args.time_level,
-             *(["--no-morphing"] if morphing is None else ["--morphing", f"{morphing:g}"])]
+             *(["--no-morphing"] if morphing is None else ["--morphing", repr(morphing)])]
     for item in args.overrides:
         study += ["--set", item]
-    gather = jobs.new_path(None, f"validate-{case.name}-study")
-    gather.write_text(slurm.single_script(tuple(study), time="1:00:00",
-                                          name=f"validate-{case.name}-study", out_dir=outputs))
-    record["gather"] = slurm.sbatch(gather, after=job)
-    jobs.write_record(record)
-    print(f"[validate {case.name}] {len(tasks)} runs submitted as job {job} ({script}), the "
-          f"study as job {record['gather']} after it: "
+    record = jobs.submit(tasks, kind="validate", name=f"validate-{case.name}", label=case.name,
+                         np_=args.np, time=args.time, end_times=[end] * len(tasks),
+                         after_argv=tuple(study))
+    print(f"[validate {case.name}] {len(tasks)} runs submitted as job {record['job']}, the "
+          f"study as job {record['after']} after it: "
           f"{layout.case_build_dir(case.name) / 'validation'}; follow with "
-          f"`floatfoam status {job}`")
+          f"`floatfoam status {record['job']}` (outputs: {record['folder']}/)")
     return 0
-

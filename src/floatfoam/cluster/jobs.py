@@ -1,26 +1,33 @@
-"""Submitted jobs: their records in ``<build>/slurm/``, each task's state and progress from the
-queue and from its run's own folder, and the summary of a finished sweep.
+"""Submitted jobs: the submission of an array and the job after it, their records, each task's
+state and progress from the queue and from its run's own folder, and the summary of a sweep.
 
-A record (``<build>/slurm/<job>.json``) holds what was submitted: the array's job id, its
-tasks (case, run folder, command), the gather job after it, the script. The state of a task is
-the queue's while Slurm holds it, else its run's: finished (the driver's marker), stopped at
-the time it reached, or never started. Its simulated time and rate come from the solver's log.
+Every submission has a folder of its own, ``<build>/slurm/<name>-<n>/``: its record
+(``record.json``: the array's job id, its tasks — case, run folder, command —, the job after
+it), its scripts, the tasks' outputs (``<job>_<task>.out``) and the summary. A job id is the
+cluster's, and two clusters (or a restarted one) may give the same id: a record is found by
+its id and every match is shown. The state of a task is the queue's while Slurm holds it, else
+its run's: finished (the driver's marker), stopped at the time it reached, or never started.
+Its simulated time and rate come from the solver's log.
 """
 
 from __future__ import annotations
 
+import datetime
 import json
 import math
 import os
 import re
+import sys
 from pathlib import Path
 
 from floatfoam import layout
+from floatfoam.cluster import slurm
 from floatfoam.cluster.slurm import Task
-from floatfoam.errors import InputError
+from floatfoam.errors import ComputationError, InputError
 from floatfoam.jsonfile import dump_json
 
 JOBS_DIR = "slurm"
+RECORD = "record.json"
 TAIL_BYTES = 1 << 20  # the end of the solver's log read for its progress
 _TIME = re.compile(r"^Time = ([-+0-9.eE]+)\s*$")
 _CLOCK = re.compile(r"ClockTime = ([0-9.eE+-]+) s")
@@ -30,58 +37,92 @@ def jobs_dir(build: Path | None = None) -> Path:
     return Path(build or layout.build_dir()) / JOBS_DIR
 
 
-def new_path(build: Path | None, stem: str, suffix: str = ".sh") -> Path:
-    """A new file ``<build>/slurm/<stem>-<n><suffix>`` (n the first free number from 1)."""
-    folder = jobs_dir(build)
-    folder.mkdir(parents=True, exist_ok=True)
-    n = 1
-    while (folder / f"{stem}-{n}{suffix}").exists():
+def _free_folder(stem: str, build: Path | None = None) -> Path:
+    """The first ``<build>/slurm/<stem>-<n>`` that does not exist (not made here)."""
+    folder, n = jobs_dir(build), 1
+    while (folder / f"{stem}-{n}").exists():
         n += 1
-    return folder / f"{stem}-{n}{suffix}"
+    return folder / f"{stem}-{n}"
 
 
-def record_path(job: str, build: Path | None = None) -> Path:
-    return jobs_dir(build) / f"{job}.json"
-
-
-def write_record(record: dict, build: Path | None = None) -> Path:
-    """Write (or update) a job's record whole: a reader never sees half of it."""
-    path = record_path(record["job"], build)
+def write_record(record: dict) -> Path:
+    """Write (or update) a submission's record whole: a reader never sees half of it."""
+    path = Path(record["folder"]) / RECORD
     fresh = path.with_name(f".{path.name}.new")
     fresh.write_text(dump_json(record) + "\n")
     os.replace(fresh, path)
     return path
 
 
-def make_record(job: str, kind: str, label: str, script: Path, tasks: list[Task],
-                end_times: list[float | None]) -> dict:
-    return {"job": job, "kind": kind, "label": label, "script": str(script), "gather": None,
-            "tasks": [{"case": t.case, "run": t.run, "argv": list(t.argv), "end_time": e}
-                      for t, e in zip(tasks, end_times, strict=True)]}
+def submit(tasks: list[Task], *, kind: str, name: str, label: str, np_: int, time: str,
+           end_times: list[float | None], after_argv: tuple[str, ...],
+           script: Path | None = None) -> dict:
+    """Submit ``tasks`` as one array and ``after_argv`` as a job after it, whatever the
+    array's outcome (``{folder}`` in it: the submission's folder); returns the record.
+    ``script``: where the array's script goes (a new file; default the submission's folder);
+    ``name``: the jobs' name and the folder's stem; ``label``: what the record says was
+    submitted. The cluster is asked first (``sbatch --test-only``): what it refuses is an
+    InputError before anything is written."""
+    stem = slurm.job_name(name)
+    folder = _free_folder(stem)
+    array = slurm.array_script(tasks, np_=np_, time=time, name=stem, out_dir=folder)
+    slurm.test_only(array)
+    folder.mkdir(parents=True)  # a new folder: a submission never writes into another's
+    script = script or folder / "array.sh"
+    with open(script, "x") as fh:
+        fh.write(array)
+    script.chmod(0o755)
+    job = slurm.sbatch(script)
+    record = {"job": job, "kind": kind, "label": label, "folder": str(folder),
+              "script": str(Path(script).resolve()), "after": None,
+              "submitted": datetime.datetime.now().isoformat(timespec="seconds"),
+              "tasks": [{"case": t.case, "run": t.run, "argv": list(t.argv), "end_time": e}
+                        for t, e in zip(tasks, end_times, strict=True)]}
+    write_record(record)
+    after = folder / "after.sh"
+    after_argv = tuple(a.replace("{folder}", str(folder)) for a in after_argv)
+    after.write_text(slurm.single_script(after_argv, time="1:00:00", name=f"{stem}-after",
+                                         out_dir=folder))
+    after.chmod(0o755)
+    try:
+        record["after"] = slurm.sbatch(after, after=job)
+    except ComputationError as err:
+        print(f"floatfoam: the array is submitted as job {job}, but not the job after it "
+              f"({err}); submit it with `sbatch --dependency=afterany:{job} {after}`",
+              file=sys.stderr)
+        raise
+    finally:
+        write_record(record)
+    return record
 
 
 def read_records(jobs: list[str] | None = None, build: Path | None = None) -> list[dict]:
-    """The records of ``jobs`` (each must exist), or every record, newest job first."""
+    """The records of ``jobs`` (each must match one or more), or every record, newest first."""
     folder = jobs_dir(build)
-    if jobs:
-        records = []
-        for job in jobs:
-            path = record_path(job, build)
-            if not path.is_file():
-                known = ", ".join(r["job"] for r in read_records(None, build)) or "none"
-                raise InputError(f"JOB {job}: no job of floatfoam's submitted from build "
-                                 f"folder {layout.build_dir() if build is None else build}; "
-                                 f"valid: {known}")
-            records.append(json.loads(path.read_text()))
+    paths = sorted(folder.glob(f"*/{RECORD}")) if folder.is_dir() else []
+    records = sorted((json.loads(p.read_text()) for p in paths),
+                     key=lambda r: r.get("submitted", ""), reverse=True)
+    if not jobs:
         return records
-    paths = [p for p in folder.glob("*.json") if p.stem.isdigit()] if folder.is_dir() else []
-    return [json.loads(p.read_text()) for p in sorted(paths, key=lambda p: -int(p.stem))]
+    chosen = []
+    for job in jobs:
+        if (Path(job) / RECORD).is_file():  # a submission's folder
+            chosen.append(json.loads((Path(job) / RECORD).read_text()))
+            continue
+        found = [r for r in records if r["job"] == job]
+        if not found:
+            known = ", ".join(r["job"] for r in records) or "none"
+            raise InputError(f"JOB {job}: no job of floatfoam's submitted from build folder "
+                             f"{folder.parent}; valid: {known}")
+        chosen += found
+    return chosen
 
 
 def progress(run_dir: Path) -> tuple[float | None, float | None]:
     """(simulated time reached, simulated seconds per wall second) of the solver's log in
-    ``run_dir``: the last ``Time =`` and the rate over the log's end (since its last start);
-    None for what the log does not say."""
+    ``run_dir``: the time of the last step it finished and the rate over the log's end, since
+    the solver's last start (None for what the log does not say: a solver restarted and
+    stopped before its first step has neither)."""
     log = Path(run_dir) / "log.interFoam"
     if not log.is_file():
         return None, None
@@ -136,13 +177,15 @@ def task_rows(record: dict, queued: dict[str, tuple[str, str]] | None,
     return rows
 
 
-def gather_state(record: dict, queued: dict[str, tuple[str, str]] | None) -> str | None:
-    gather = record.get("gather")
-    if not gather:
+def after_state(record: dict, queued: dict[str, tuple[str, str]] | None) -> str | None:
+    """The state of the job after the array: the queue's, else "ended"."""
+    after = record.get("after")
+    if not after:
         return None
-    if queued is not None and gather in queued:
-        state, reason = queued[gather]
-        return state.lower() + (f" ({reason})" if state == "PENDING" else "")
+    if queued is not None and after in queued:
+        state, reason = queued[after]
+        return state.lower() + (f" ({reason})" if state == "PENDING" and reason not in
+                                ("None", "") else "")
     return "ended" if queued is not None else "unknown here"
 
 
@@ -189,13 +232,13 @@ def summary(record: dict, build: Path | None = None) -> list[dict]:
         if info.is_file():
             entry["cells"] = json.loads(info.read_text()).get("cells")
         motion_csv = run_dir / "motion.csv"
+        dofs, motion = (), None
         if entry["finished"] and motion_csv.is_file():
-            motion = read_motion(motion_csv)
             try:
+                motion = read_motion(motion_csv)
                 dofs = choose(motion_csv, motion).dofs
-            except InputError as err:
+            except (InputError, OSError, ValueError) as err:
                 entry["note"] = str(err)
-                dofs = ()
             for dof in dofs:
                 scale, unit = file_unit(dof)
                 t, x = dof_series(motion, dof)
@@ -217,7 +260,8 @@ def summary_markdown(record: dict, entries: list[dict]) -> str:
         first = [e["task"], e["case"], e["run"], "yes" if e["finished"] else
                  f"no ({_num(e['time'])} s)", str(e.get("cells") or "—")]
         if not e["dofs"]:
-            lines.append("| " + " | ".join([*first, "—", "—", e.get("note", "—")]) + " |")
+            note = e.get("note", "—").split(";")[0].replace("|", "/")
+            lines.append("| " + " | ".join([*first, "—", "—", note]) + " |")
         for dof, fit in e["dofs"].items():
             values = [f"{fit['period_s']:.4f}", f"{fit['damping_ratio']:.4f}"] \
                 if "period_s" in fit else ["—", fit["error"].split(";")[0].replace("|", "/")]

@@ -58,7 +58,7 @@ def run_command(case_path: str | Path, level: str, np_: int, overrides: list[str
     if divisor != 1:
         argv += ["--dt-divisor", str(divisor)]
     if morphing != 1:
-        argv += ["--morphing", f"{morphing:g}"]
+        argv += ["--morphing", repr(float(morphing))]
     if hostfile is not None:
         argv += ["--hostfile", str(Path(hostfile).resolve())]
     for item in overrides:
@@ -80,15 +80,32 @@ def _word(arg: str) -> str:
     return shlex.quote(arg)
 
 
+def job_name(text: str) -> str:
+    """A job name of letters, digits and ``._-`` (a case's folder name may hold others)."""
+    return re.sub(r"[^A-Za-z0-9._-]+", "_", text)[:64] or "floatfoam"
+
+
+def _sbatch_value(text: str) -> str:
+    """An ``#SBATCH`` option's value, double-quoted (sbatch reads the quotes)."""
+    if re.search(r'["\x00-\x1f\x7f]', text):
+        raise InputError(f"{text!r}: a path with a double quote or a control character cannot "
+                         "go into a Slurm script; valid is a build folder path without them")
+    return f'"{text}"'
+
+
+def _comment(text: str) -> str:
+    return re.sub(r"[\x00-\x1f\x7f]", "?", text)
+
+
 def _header(name: str, np_: int, time: str, output: str, extra: list[str]) -> list[str]:
     build = os.environ.get(layout.BUILD_ENV)
     return [
         "#!/bin/bash",
-        f"#SBATCH --job-name={name}",
+        f"#SBATCH --job-name={job_name(name)}",
         *extra,
         f"#SBATCH --ntasks={np_}",
         f"#SBATCH --time={time}",
-        f"#SBATCH --output={output}",
+        f"#SBATCH --output={_sbatch_value(output)}",
         "#SBATCH --open-mode=append",  # a requeued task adds to its output, never replaces it
         f"# Written by floatfoam on {datetime.datetime.now().isoformat(timespec='seconds')}.",
         "set -eu",
@@ -109,7 +126,7 @@ def array_script(tasks: list[Task], *, np_: int, time: str, name: str, out_dir: 
         'case "${SLURM_ARRAY_TASK_ID:?set by Slurm, or by hand to run one task}" in',
     ]
     for i, task in enumerate(tasks):
-        lines.append(f"  {i})  # {task.case} {task.run}")
+        lines.append(f"  {i})  # {_comment(task.case)} {task.run}")
         lines.append("    exec " + " ".join(_word(a) for a in task.argv) + " ;;")
     lines += [f'  *) echo "no task $SLURM_ARRAY_TASK_ID: valid 0-{len(tasks) - 1}" >&2; '
               "exit 2 ;;", "esac"]
@@ -131,12 +148,35 @@ def require_sbatch() -> None:
                          "Slurm's client (write the script without --submit and copy it)")
 
 
+SBATCH_TIMEOUT = 120.0  # s: sbatch waits on the controller; more than this, it is not answering
+
+
+def test_only(text: str) -> None:
+    """``sbatch --test-only`` of a script's text: what the cluster refuses (a time over the
+    partition's limit, more tasks than a node has, no default partition) is an InputError
+    before anything is written."""
+    try:
+        proc = subprocess.run(["sbatch", "--test-only"], input=text, capture_output=True,
+                              text=True, timeout=SBATCH_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        raise InputError(f"sbatch --test-only did not answer in {SBATCH_TIMEOUT:g} s: is "
+                         "Slurm's controller up (`sinfo`)?") from None
+    if proc.returncode != 0:
+        message = " ".join(proc.stderr.split()) or f"exit code {proc.returncode}"
+        raise InputError(f"sbatch refuses the job: {message}; valid: what the cluster allows "
+                         "(--time, --np; `sinfo`)")
+
+
 def sbatch(script: Path, *, after: str | None = None) -> str:
     """Submit ``script`` (after the job ``after`` has ended, whatever its outcome); returns the
     job id."""
     argv = ["sbatch", "--parsable", *([f"--dependency=afterany:{after}"] if after else []),
             str(script)]
-    proc = subprocess.run(argv, capture_output=True, text=True, timeout=120)
+    try:
+        proc = subprocess.run(argv, capture_output=True, text=True, timeout=SBATCH_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        raise ComputationError(f"sbatch {script} did not answer in {SBATCH_TIMEOUT:g} s: the "
+                               "job may or may not be submitted (`squeue --me`)") from None
     if proc.returncode != 0:
         message = " ".join(proc.stderr.split()) or f"exit code {proc.returncode}"
         raise ComputationError(f"sbatch {script} failed: {message}")
