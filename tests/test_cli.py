@@ -101,3 +101,15 @@ def test_version(capsys):
     pyproject = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text())
     assert capsys.readouterr().out == f"floatfoam {pyproject['project']['version']}\n"
     assert version("floatfoam") == pyproject["project"]["version"]
+
+
+def test_decay_model_with_set_never_replaces_the_case_own_series(tmp_path, monkeypatch):
+    """decay-model's default CSV: the case's own, and with --set one of its own per override
+    (a series of another body never replaces the case's)."""
+    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path))
+    assert main(["decay-model", "sphere", "--model", "linear", "--duration", "1"]) == 0
+    assert main(["decay-model", "sphere", "--model", "linear", "--duration", "1", "--set",
+                 "mass.density=600"]) == 0
+    own = tmp_path / "sphere" / "decay_linear.csv"
+    (other,) = (tmp_path / "sphere").glob("decay_linear_set-????????.csv")
+    assert own.read_text() != other.read_text()

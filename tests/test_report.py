@@ -94,8 +94,9 @@ def test_report_gathers_theory_and_finished_runs(tmp_path, monkeypatch):
     cases, build = make_tree(tmp_path)
     sources = fake_sources(monkeypatch)
     html_path = build_report(cases_dir=cases, build_dir=build, sources=sources)
-    out = build / "report"
-    assert html_path == out / "index.html"
+    # another cases folder than the project's: a report folder of its own, never build/report
+    (out,) = build.glob(f"report-{cases.name}-????????")
+    assert html_path == out / "index.html" and not (build / "report").exists()
     md = (out / "index.md").read_text()
     html = html_path.read_text()
     # Every case appears (theory only where no run exists), _common does not.
@@ -195,8 +196,9 @@ def test_report_sets_the_cfd_against_cummins_model(tmp_path):
     t = np.arange(0.0, 3.0, 2e-3)
     write_motion(build / case.name / "medium" / "motion.csv", t, z=synthetic_decay(t))
     mark_done(build / case.name / "medium", "finished")
-    html = build_report(cases_dir=cases, build_dir=build, sources=Sources.default()).read_text()
-    out = build / "report" / case.name
+    html_path = build_report(cases_dir=cases, build_dir=build, sources=Sources.default())
+    html = html_path.read_text()
+    out = html_path.parent / case.name
 
     assert linear_restoring_error(case) > LARGE_RELEASE
     series = decay_series(case, "cummins", duration=float(t[-1]), nonlinear_restoring=True)
@@ -210,7 +212,7 @@ def test_report_sets_the_cfd_against_cummins_model(tmp_path):
         float(cfd["period"]) / 0.6 - 1, rel=1e-9)
     assert "Δ period vs Cummins' model" in cfd["basis"]
     assert rows["linear theory (exact)"]["period"]  # the theory keeps its row
-    md = (build / "report" / "index.md").read_text()
+    md = html_path.with_suffix(".md").read_text()
     delta = f"{100 * (float(cfd['period']) / model_period - 1):+.2f} %"
     assert "| heave | CFD medium | 0.63 |" in md and f"| {delta} |" in md
     assert "| Δ period vs model |" in md and "| Δ period vs measured |" in md

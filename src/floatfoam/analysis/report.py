@@ -389,14 +389,19 @@ def build_report(*, cases_dir: str | Path | None = None, build_dir: str | Path |
                  pictures: bool = False) -> Path:
     """Write ``index.md``, ``index.html`` and the per-case files; return the HTML's path.
 
-    Defaults: the repository's ``cases/`` and ``build/``, and ``<build_dir>/report``.
+    Defaults: the repository's ``cases/`` and ``build/``, and ``<build_dir>/report`` — for
+    another cases folder ``<build_dir>/report-<its name>-<8 hex digits of its path>``, so that
+    the report of one folder never replaces another's.
     ``pictures`` adds the pictures of the flow of every finished run (``floatfoam report``
     does by default; drawn once per run).
     """
     sources = sources or Sources.default()
     cases_dir = Path(cases_dir or layout.CASES_DIR)
     build_dir = Path(build_dir or layout.build_dir())
-    out_dir = Path(out_dir or build_dir / "report")
+    if out_dir is None:
+        own = cases_dir.resolve() == layout.CASES_DIR.resolve()
+        out_dir = build_dir / ("report" if own else f"report-{_folder_name(cases_dir)}")
+    out_dir = Path(out_dir)
     folders = layout.list_cases(cases_dir)
     if not folders:
         raise InputError(f"--cases {cases_dir}: no case folder with a case.toml in it; valid is "
@@ -416,3 +421,13 @@ def build_report(*, cases_dir: str | Path | None = None, build_dir: str | Path |
     html_path = out_dir / "index.html"
     html_path.write_text(doc.html())
     return html_path
+
+
+def _folder_name(folder: Path) -> str:
+    """A cases folder's name with 8 hex digits of its absolute path."""
+    import hashlib
+    import os
+
+    path = os.path.abspath(folder)
+    return f"{Path(path).name}-{hashlib.sha256(path.encode()).hexdigest()[:8]}"
+

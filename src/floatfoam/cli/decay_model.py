@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import math
 from pathlib import Path
 
@@ -22,7 +23,8 @@ def register(sub) -> None:
                    help="simulated time in s (default ten of the longest linear period)")
     p.add_argument("--out", default=None, metavar="CSV",
                    help="motion CSV to write (default build/<case>/decay_<model>.csv, "
-                        "with _<dofs> when --dofs is given)")
+                        "with _<dofs> when --dofs is given and _set-<8 hex digits> with "
+                        "--set)")
     p.add_argument("--nonlinear-restoring", action="store_true",
                    help="cummins: exact hydrostatic restoring instead of C x")
     p.add_argument("--dofs", default=None, metavar="LIST",
@@ -53,6 +55,9 @@ def run(args) -> int:
                               progress=beat)
         suffix = ("_nonlinear_restoring" if args.nonlinear_restoring else "") + (
             "_" + "-".join(d.name for d in chosen) if chosen else "")  # e.g. _heave-roll
+        if args.overrides:  # another body or release: never the case's own file
+            digest = hashlib.sha256("\n".join(args.overrides).encode()).hexdigest()[:8]
+            suffix += f"_set-{digest}"
         out = Path(args.out) if args.out else \
             layout.case_build_dir(case.name) / f"decay_{args.model}{suffix}.csv"
         samples = len(series["time"])

@@ -6,7 +6,8 @@ from __future__ import annotations
 def add_arguments(parser) -> None:
     """The report command's arguments (shared with postprocess/report.py)."""
     parser.add_argument("--out", metavar="DIR",
-                        help="output folder (default: <build>/report)")
+                        help="output folder (default: <build>/report; with --cases, "
+                             "<build>/report-<its name>-<8 hex digits>)")
     parser.add_argument("--cases", metavar="DIR", help="cases folder (default: the project's)")
     parser.add_argument("--build", metavar="DIR",
                         help="folder of the runs, <build>/<case>/<level>/motion.csv "
