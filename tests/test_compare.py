@@ -111,7 +111,7 @@ def test_full_table_against_model_and_reference(tmp_path, potential, model):
     comparison = compare_case(case, build_dir=tmp_path / "build", theory=THEORY,
                               potential=potential, model=model)
     rows = rows_by_source(comparison)
-    assert list(rows) == ["memoir (reconstructed)", "linear theory (exact)", "potential flow",
+    assert list(rows) == ["memoir (corrected)", "linear theory (exact)", "potential flow",
                           MODEL, "CFD coarse", "reference"]
     cfd, cummins = rows["CFD coarse"], rows[MODEL]
     # Clean synthetic records: the fit is exact to ~1e-10; 1e-6 leaves room for round-off.
@@ -243,7 +243,7 @@ def test_bad_record_gives_a_failed_row_not_a_missing_one(tmp_path, no_potential)
 def test_no_run_yet_is_noted(tmp_path, no_potential):
     comparison = compare_case(fake_case(tmp_path), build_dir=tmp_path / "build", theory=THEORY,
                               potential=no_potential)
-    assert [r["source"] for r in comparison.rows] == ["memoir (reconstructed)",
+    assert [r["source"] for r in comparison.rows] == ["memoir (corrected)",
                                                       "linear theory (exact)", MODEL]
     assert any(note.startswith("CFD: no run yet") for note in comparison.notes)
 

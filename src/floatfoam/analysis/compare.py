@@ -301,11 +301,19 @@ def _potential(case, source, notes: list[str]) -> PotentialSummary | None:
     return summary
 
 
+def memoir_label(source: str | None) -> str:
+    """The memoir's row as ``floatfoam theory`` names it: "memoir (corrected)" for its method
+    derived again (``source == "reconstructed"``: docs/memoir.md), else the source given."""
+    if not source:
+        return "memoir formula"
+    return "memoir (corrected)" if source == "reconstructed" else f"memoir ({source})"
+
+
 def _theory_rows(case, dof, theory, potential):
     rows = []
     memoir = theory.memoir or {}
     if memoir.get(f"{dof}_period") is not None:
-        label = f"memoir ({memoir['source']})" if memoir.get("source") else "memoir formula"
+        label = memoir_label(memoir.get("source"))
         rows.append(_row(case.name, dof, label, float(memoir[f"{dof}_period"])))
     printed = theory.memoir_printed or {}
     if printed.get(f"{dof}_period") is not None:

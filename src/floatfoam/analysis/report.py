@@ -39,6 +39,7 @@ from floatfoam.analysis.compare import (
     compare_case,
     comparison_table,
     fmt,
+    memoir_label,
     potential_flow,
     write_comparison,
 )
@@ -114,7 +115,7 @@ def theory_table(summary: TheorySummary) -> tuple[list[str], list[list[str]]]:
     theory = summary.to_dict()
     memoir = theory.get("memoir") or {}
     header = ["quantity", "exact theory"] + (
-        [f"memoir ({memoir['source']})" if memoir.get("source") else "memoir"]
+        [memoir_label(memoir.get("source")) if memoir.get("source") else "memoir"]
         if memoir else []) + ["unit"]
     rows = [[label, _cell(theory.get(key))] + ([_cell(memoir.get(key, ""))] if memoir else [])
             + [unit] for key, label, unit in THEORY_ROWS if key in theory]

@@ -92,7 +92,10 @@ def print_summary(case, result, eq) -> None:
     print(f"motion series: {result.motion_csv}")
     motion = read_motion(result.motion_csv)
     for d in released(case.release) or released({"heave": 1.0}):
-        print("\n".join(turning_rows(motion["time"], motion[d.column], f"{d.name} ({d.unit})")))
+        # heave's column is G's height in the tank (z = 0 the still water's level), not its
+        # distance from equilibrium: named as such
+        quantity = f"z of G ({d.unit})" if d.name == "heave" else f"{d.name} ({d.unit})"
+        print("\n".join(turning_rows(motion["time"], motion[d.column], quantity)))
         _dof_summary(d, motion, theory)
 
 
