@@ -18,7 +18,7 @@ from floatfoam.errors import ComputationError, InputError
 from floatfoam.interrupts import SignalInterruptError, signals_interrupt
 
 COMMANDS = ["theory", "gz", "mesh", "run", "batch", "status", "analyse", "report", "potential",
-            "decay_model", "validate", "pictures", "export"]
+            "decay_model", "roll_damping", "validate", "pictures", "export"]
 
 
 class OneLineParser(argparse.ArgumentParser):

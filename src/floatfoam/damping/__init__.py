@@ -1,0 +1,2 @@
+"""Roll damping beyond potential flow: Ikeda's component estimate
+(:mod:`floatfoam.damping.ikeda`)."""
