@@ -199,13 +199,15 @@ def plot_decay(path: str | Path, time, value, result: DecayResult, *,
 
 
 def plot_extinction(path: str | Path, curve: ExtinctionCurve, *, scale: float = 1.0,
-                    unit: str = "", title: str = "") -> Path:
+                    unit: str = "", title: str = "", references=()) -> Path:
     """Write the extinction figure of one record to ``path`` (file units: ``scale`` × code).
 
     Left: the decrement Δφ of each half swing against its mean amplitude φ_m, with the fit
     a φ_m + b φ_m² (+ c φ_m³) and its 95 % band. Right: the equivalent damping ratio against
     the amplitude: Δφ/(π φ_m) per half swing, ζ_i per cycle (quasi-linear), the fit's
-    ζ_eq = (a + b φ + c φ²)/π with its band and the quasi-linear line ζ1 + ζ2 φ.
+    ζ_eq = (a + b φ + c φ²)/π with its band and the quasi-linear line ζ1 + ζ2 φ, and beside
+    them ``references``: (label, amplitudes in code units, ζ, matplotlib format) each, e.g.
+    Ikeda's components and potential flow's.
     """
     grid = np.linspace(0.0, 1.05 * float(np.max(curve.start)), 200)
     fitted, half = curve.fitted_decrement(grid)
@@ -233,6 +235,8 @@ def plot_extinction(path: str | Path, curve: ExtinctionCurve, *, scale: float = 
     zeta1, zeta2 = curve.quasi_linear.coefficients
     right.plot(grid * scale, zeta1 + zeta2 * grid, color="C3", ls="--",
                label="quasi-linear ζ1 + ζ2 φ")
+    for label, amplitude, value, style in references:
+        right.plot(np.asarray(amplitude) * scale, value, style, label=label)
     right.set_xlabel(f"amplitude ({unit})")
     right.set_ylabel("equivalent damping ratio ζ_eq")
     right.set_xlim(left=0.0)

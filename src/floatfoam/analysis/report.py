@@ -125,7 +125,8 @@ def theory_table(summary: TheorySummary) -> tuple[list[str], list[list[str]]]:
     return header, rows
 
 
-def _plots(case, theory, comparison: Comparison, out_dir: Path) -> list[tuple[str, str]]:
+def _plots(case, theory, comparison: Comparison, out_dir: Path,
+           sources: Sources | None = None) -> list[tuple[str, str]]:
     images = []
     for run in comparison.analyses:
         scale, unit = file_unit(run.dof)
@@ -137,13 +138,15 @@ def _plots(case, theory, comparison: Comparison, out_dir: Path) -> list[tuple[st
         beside = f" beside {model.label}" if model else ""
         images.append((name, f"{case.name} {run.level} {run.dof} decay{beside}"))
         if run.dof == "roll":
-            images += _extinction_plot(case, run, out_dir, scale, unit)
+            images += _extinction_plot(case, run, out_dir, scale, unit, sources)
     return images
 
 
-def _extinction_plot(case, run, out_dir: Path, scale: float, unit: str) -> list:
-    """The roll record's extinction curve (:mod:`floatfoam.analysis.extinction`), or nothing
-    when the record holds too few half swings for its fit."""
+def _extinction_plot(case, run, out_dir: Path, scale: float, unit: str,
+                     sources: Sources | None = None) -> list:
+    """The roll record's extinction curve (:mod:`floatfoam.analysis.extinction`) beside Ikeda's
+    components and potential flow's wave damping for a 2D section (:func:`_ikeda_lines`), or
+    nothing when the record holds too few half swings for its fit."""
     from floatfoam.analysis.extinction import extinction_curve
     from floatfoam.analysis.plots import plot_extinction
 
@@ -151,11 +154,41 @@ def _extinction_plot(case, run, out_dir: Path, scale: float, unit: str) -> list:
         curve = extinction_curve(run.result, name=f"{case.name} {run.level}")
     except InputError:
         return []
+    lines = _ikeda_lines(case, sources, float(max(curve.start)))
     name = f"{case.name}/{run.level}_{run.dof}_extinction.png"
-    plot_extinction(out_dir / name, curve, scale=scale, unit=unit,
+    plot_extinction(out_dir / name, curve, scale=scale, unit=unit, references=lines,
                     title=f"{case.name}, {run.level} mesh: {run.dof} extinction curve")
+    beside = "; beside Ikeda's components and potential flow" if lines else ""
     return [(name, f"{case.name} {run.level} {run.dof} extinction curve: decrement per half "
-                   "swing and equivalent damping ratio against amplitude")]
+                   f"swing and equivalent damping ratio against amplitude{beside}")]
+
+
+def _ikeda_lines(case, sources: Sources | None, largest: float) -> list:
+    """ζ against amplitude (rad) of Ikeda's total (friction + eddy + wave, about a fixed axis
+    through G) and of potential flow's wave damping, fixed axis and sway free, for a 2D
+    section whose potential flow the report has; none otherwise."""
+    if sources is None or sources.potential is None or not case.body.is_section:
+        return []
+    import numpy as np
+
+    from floatfoam.damping.ikeda import roll_damping
+    from floatfoam.hydrostatics.theory import equilibrium
+
+    try:
+        potential, eq = sources.potential(case), equilibrium(case)
+        degrees = np.linspace(0.25, min(45.0, np.degrees(largest) * 1.05), 40)
+        results = [roll_damping(case, eq, potential, float(a)) for a in degrees]
+    except InputError:
+        return []
+    angle = np.radians(degrees)
+    lines = [("Ikeda: friction + eddy + wave (fixed axis)", angle,
+              [r.zeta(r.total) for r in results], "k-."),
+             ("potential flow: wave (fixed axis)", angle, [r.zeta(r.wave) for r in results],
+              "k:")]
+    if results[0].wave_zeta_sway_free is not None:
+        lines.append(("potential flow: wave (sway free)", angle,
+                      [results[0].wave_zeta_sway_free] * len(angle), "C2:"))
+    return lines
 
 
 def _figures(doc: Document, case, sources: Sources, out_dir: Path) -> None:
@@ -263,7 +296,7 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
                               potential=sources.potential, model=sources.model)
     write_comparison(comparison, case_out)
     _comparison_section(doc, comparison)
-    images = _plots(case, theory, comparison, out_dir)
+    images = _plots(case, theory, comparison, out_dir, sources)
     if images:
         doc.heading("Decay records", 3)
         for src, alt in images:
