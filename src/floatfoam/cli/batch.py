@@ -84,9 +84,10 @@ def run(args) -> int:
             f"{args.np} rank(s) each)")
     if not args.submit:
         outputs = jobs.jobs_dir()
+        text = slurm.array_script(tasks, np_=args.np, time=args.time, name="floatfoam",
+                                  out_dir=outputs)  # checked whole before anything is written
         outputs.mkdir(parents=True, exist_ok=True)
-        out.write_text(slurm.array_script(tasks, np_=args.np, time=args.time,
-                                          name="floatfoam", out_dir=outputs))
+        out.write_text(text)
         out.chmod(0o755)
         print(f"{out}: {what}; submit with `sbatch {out}` (its output: {outputs}/)")
         return 0

@@ -218,7 +218,7 @@ def _num(value: float | None) -> str:
 
 def summary(record: dict, build: Path | None = None) -> list[dict]:
     """Each task's finished run analysed: the released DoFs' damped period and damping ratio
-    (or why not), its cells and solver wall time."""
+    (or why not), and its cells."""
     from floatfoam.analysis.decay import analyse_decay
     from floatfoam.analysis.released import choose
     from floatfoam.motion import dof_series, file_unit, read_motion
