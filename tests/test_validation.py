@@ -242,9 +242,9 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     cases = tmp_path / "cases"
     cases.mkdir()
     (cases / "cylinder_heave").symlink_to(layout.CASES_DIR / "cylinder_heave")  # the same case
-    build_report(cases_dir=cases, build_dir=tmp_path,
-                 sources=Sources.default(include_potential=False))
-    md = (tmp_path / "report" / "index.md").read_text()
+    html = build_report(cases_dir=cases, build_dir=tmp_path, out_dir=tmp_path / "report",
+                        sources=Sources.default(include_potential=False))
+    md = html.with_suffix(".md").read_text()
     assert "### Grid and time-step convergence" in md
     assert "## Verification: grid and time-step convergence" in md
     # the summary line of the study, ending with the damping's change with the distances
@@ -610,9 +610,9 @@ def test_the_report_leaves_out_runs_and_a_study_of_other_settings(tmp_path):
     (cases / case.name).symlink_to(layout.CASES_DIR / case.name)  # the same case
 
     def report() -> str:
-        build_report(cases_dir=cases, build_dir=tmp_path,
-                     sources=Sources.default(include_potential=False))
-        return (tmp_path / "report" / "index.md").read_text()
+        html = build_report(cases_dir=cases, build_dir=tmp_path, out_dir=tmp_path / "report",
+                            sources=Sources.default(include_potential=False))
+        return html.with_suffix(".md").read_text()
 
     md = report()
     assert "| heave | CFD coarse |" not in md and "Grid and time-step convergence" not in md
