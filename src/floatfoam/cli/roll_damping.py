@@ -4,8 +4,6 @@ equivalent damping ratio at a roll amplitude (:mod:`floatfoam.damping.ikeda`).""
 
 from __future__ import annotations
 
-import math
-
 from floatfoam.cli.common import add_case_arguments, dump_json
 
 COMPONENTS = ("friction", "eddy", "wave", "lift", "total")
@@ -24,22 +22,16 @@ def register(sub) -> None:
 
 def run(args) -> int:
     from floatfoam.case import load_case
-    from floatfoam.damping.ikeda import roll_damping
-    from floatfoam.errors import InputError
+    from floatfoam.damping.ikeda import check_amplitude, require_section, roll_damping
     from floatfoam.hydrostatics.theory import equilibrium
     from floatfoam.potential.radiation import potential_summary
 
     case = load_case(args.case, args.overrides)
     heel = abs(float(case.release.get("heel", 0.0) or 0.0))
     amplitudes = args.amplitude or [heel if heel > 0 else 5.0]
-    for a in amplitudes:
-        if not (math.isfinite(a) and 0 < a <= 45):
-            raise InputError(f"--amplitude {a:g}: valid is a roll amplitude in degrees, "
-                             "0 < φ_a ≤ 45")
-    if not getattr(case.body, "is_section", False):
-        raise InputError(f"case {case.name!r} is not a 2D section; valid: a "
-                         "horizontal prism's section (box, circular, elliptic, parabolic or conic "
-                         "cylinder), whose roll damping Ikeda's components give per unit length")
+    for a in amplitudes:  # checked before the potential flow is solved
+        check_amplitude(a)
+    require_section(case)
     eq = equilibrium(case)
     potential = potential_summary(case)
     results = [roll_damping(case, eq, potential, a) for a in amplitudes]

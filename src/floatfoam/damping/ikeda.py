@@ -164,13 +164,25 @@ def eddy(section: Section, amplitude: float, omega: float, rho: float) -> tuple[
     return 4 / (3 * math.pi) * rho * section.draft**4 * omega * amplitude * c_r, e
 
 
-def section_of(case, eq, resolution: int = 2000) -> Section:
-    """The immersed section of a 2D case at its upright equilibrium, about G."""
+def require_section(case) -> None:
+    """Ikeda's components here are per unit length of a horizontal prism's section."""
     body = case.body
     if not getattr(body, "is_section", False):
         raise InputError(f"case {case.name!r} is not a 2D section (shape "
                          f"{type(body).__name__}); valid: a horizontal prism's section (box, "
                          "circular, elliptic, parabolic or conic cylinder)")
+
+
+def check_amplitude(amplitude_deg: float) -> None:
+    if not (math.isfinite(amplitude_deg) and 0 < amplitude_deg <= 45):
+        raise InputError(f"--amplitude {amplitude_deg:g}: valid is a roll amplitude in degrees, "
+                         "0 < φ_a ≤ 45")
+
+
+def section_of(case, eq, resolution: int = 2000) -> Section:
+    """The immersed section of a 2D case at its upright equilibrium, about G."""
+    body = case.body
+    require_section(case)
     if abs(eq.heel) > 1e-9 or abs(float(case.cog[1])) > 1e-12:
         raise InputError(f"case {case.name!r} floats heeled (G off the centre "
                          "plane); valid: a section upright at equilibrium")
@@ -271,9 +283,7 @@ def roll_damping(case, eq, potential, amplitude_deg: float) -> RollDamping:
     """Ikeda's components of ``case``'s roll damping at ``amplitude_deg``, at the natural
     frequency of roll with added inertia from ``potential`` (a PotentialSummary of the case),
     whose radiation damping is the wave component."""
-    if not 0 < amplitude_deg <= 45:
-        raise InputError(f"--amplitude {amplitude_deg:g}: valid is a roll amplitude in degrees, "
-                         "0 < φ_a ≤ 45")
+    check_amplitude(amplitude_deg)
     roll = potential.dof("roll")
     if roll.natural_frequency is None or roll.added_mass is None:
         raise InputError(f"case {case.name!r} does not oscillate in roll (no "
