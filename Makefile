@@ -19,12 +19,9 @@ export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export MPLBACKEND := Agg
 
-# the CFD cases: `make <case>` runs one (LEVEL=coarse|medium|fine NP=n SET="...")
-CFD_CASES := cylinder_heave elliptic_cylinder elliptic_cylinder_roll elliptic_cylinder_capsize \
-	parabolic_cylinder hyperbolic_cylinder box_bilge box_bilge_heave sphere sphere_25mm sphere_50mm \
-	ellipsoid_roll ellipsoid_pitch ellipsoid ellipsoid_printed_verdict stl_pontoon superellipsoid_buoy lab_sphere \
-	lab_sphere_03D lab_sphere_05D \
-	flume_section_roll flume_section_roll_sway_held flume_section_heave
+# the CFD cases: `make <case>` runs one (LEVEL=coarse|medium|fine NP=n SET="..."); every folder
+# of cases/ with a case.toml, but the shared ones whose names start with _
+CFD_CASES := $(sort $(filter-out _%,$(patsubst cases/%/case.toml,%,$(wildcard cases/*/case.toml))))
 .PHONY: $(CFD_CASES) help setup run test test-extended mesh mesh-table test-fast lint theory gz potential decay-model report validate pictures docs bench-theory bench-potential bench-cfd bench-sharing clean
 
 help:  ## list the targets

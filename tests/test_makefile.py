@@ -72,3 +72,17 @@ def test_make_clean_honours_floatfoam_build(project, tmp_path):
 def test_make_pictures_runs_floatfoam_pictures():
     assert "floatfoam pictures elliptic_cylinder_roll --level medium" in dry_run(
         "pictures", CASE="elliptic_cylinder_roll", LEVEL="medium")
+
+
+def test_every_case_folder_has_its_target():
+    """`make <case>` for every folder of cases/ with a case.toml (the shared ones, `_…`, have
+    none): the target list comes from the folders, so a new case needs no Makefile edit."""
+    names = sorted(p.parent.name for p in (ROOT / "cases").glob("*/case.toml")
+                   if not p.parent.name.startswith("_"))
+    listed = [line.split()[-1] for line in subprocess.run(
+        ["make", "--no-print-directory", "help"], cwd=ROOT, capture_output=True, text=True,
+        check=True).stdout.splitlines() if line.startswith("    make ")]
+    assert listed == names and len(names) >= 20
+    assert "floatfoam run lab_sphere --level medium" in dry_run("lab_sphere", LEVEL="medium")
+    with pytest.raises(subprocess.CalledProcessError):
+        dry_run("_flume_section")
