@@ -14,9 +14,8 @@ PY := .venv/bin/python
 FF := .venv/bin/floatfoam
 SETARGS := $(foreach s,$(SET),--set $(s))
 NPARGS := $(if $(NP),--np $(NP))
-export WM_PROJECT_DIR := /usr/share/openfoam
-export OMPI_ALLOW_RUN_AS_ROOT := 1
-export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
+# the OpenFOAM and MPI environment is floatfoam's own (floatfoam.foam.runner.FOAM_ENV), set on
+# every OpenFOAM command it starts: nothing to export here
 export MPLBACKEND := Agg
 
 # the CFD cases: `make <case>` runs one (LEVEL=coarse|medium|fine NP=n SET="..."); every folder
