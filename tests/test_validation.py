@@ -880,3 +880,24 @@ def test_time_gci_takes_the_schemes_order():
     assert time_study(runs, "period").gci_coarse == pytest.approx(0.06)
     assert time_study(runs, "period", order=2.0).gci_coarse == pytest.approx(0.04)
     assert "second order" in method(order=2.0) and "first order" in method()
+
+
+@pytest.mark.parametrize("default, order", [("Euler", 1.0), ("backward", 2.0),
+                                            ("CrankNicolson 0.9", 1.0),
+                                            ("CrankNicolson 1", 2.0)])
+def test_time_order_is_read_from_the_schemes(tmp_path, default, order):
+    """The time-step GCI's order follows the fvSchemes the runs take (its ddtSchemes default),
+    not a copy of it: the shared file's Euler gives 1, a file changed to backward 2; a scheme
+    of no known order is refused, naming the file."""
+    from floatfoam.analysis.validation import time_order
+    from floatfoam.layout import COMMON_DIR
+
+    case = load_case("box_bilge")
+    schemes = tmp_path / "fvSchemes"
+    text = (COMMON_DIR / "system" / "fvSchemes").read_text()
+    assert "ddtSchemes      { default Euler; }" in text
+    schemes.write_text(text.replace("default Euler;", f"default {default};"))
+    assert time_order(case, schemes) == order
+    schemes.write_text(text.replace("default Euler;", "default localEuler;"))
+    with pytest.raises(ValueError, match=r"fvSchemes: ddtSchemes default 'localEuler' has no"):
+        time_order(case, schemes)

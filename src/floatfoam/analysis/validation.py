@@ -106,7 +106,8 @@ def plan(time_level: str = TIME_STEP_LEVEL,
     return runs if morphing is None else (*runs, (MORPHING_LEVEL, 1, float(morphing)))
 
 
-TIME_ORDER = 1.0  # Euler implicit (cases/_common/system/fvSchemes ddtSchemes)
+#: the order taken where a study holds none (Euler's: :func:`time_order` reads the scheme)
+TIME_ORDER = 1.0
 #: the schemes' formal order in space (second: cases/_common/system/fvSchemes; the time error
 #: has its own GCI, below). An observed order beyond twice it says the three levels'
 #: differences are not the power law the extrapolation assumes (two of them agree by chance,
@@ -121,10 +122,31 @@ QUANTITIES = (("period", "damped period T_d (whole record)", "s"),
               ("first_trough", "first trough below the settled level", "m or rad"))
 
 
-def time_order(case) -> float:
-    """The formal order of the case's time scheme (``run.time_scheme``): 2 for Crank–Nicolson
-    with ψ = 1, else 1 (Euler; ψ < 1 blends in Euler's first-order error)."""
-    return 2.0 if time_scheme_coefficient(case.settings.run.time_scheme) == 1.0 else TIME_ORDER
+#: the formal order of each ddtSchemes entry a run may take (Crank–Nicolson's 2 only at ψ = 1:
+#: ψ < 1 blends in Euler's first-order error)
+DDT_ORDERS = {"Euler": 1.0, "backward": 2.0, "CrankNicolson": 2.0}
+
+
+def time_order(case, schemes: Path | None = None) -> float:
+    """The formal order of the time scheme the case's runs take: Crank–Nicolson where the case
+    names it (``run.time_scheme``), else the ``ddtSchemes`` default of the shared fvSchemes
+    (``schemes``, default cases/_common/system/fvSchemes), read there so that the GCI follows
+    a change of it. A scheme of no known order is refused (ValueError naming it)."""
+    psi = time_scheme_coefficient(case.settings.run.time_scheme)
+    if psi is None:
+        from foamlib import FoamFile
+
+        path = schemes or layout.COMMON_DIR / "system" / "fvSchemes"
+        entry = FoamFile(path)["ddtSchemes"]["default"]
+        words = [str(w) for w in (entry if isinstance(entry, (list, tuple)) else
+                                  str(entry).split())]
+        if words[0] not in DDT_ORDERS:
+            raise ValueError(f"{path}: ddtSchemes default {' '.join(words)!r} has no formal "
+                             f"order here: valid is {', '.join(DDT_ORDERS)}")
+        psi = float(words[1]) if words[0] == "CrankNicolson" and len(words) > 1 else None
+        if psi is None:
+            return DDT_ORDERS[words[0]]
+    return DDT_ORDERS["CrankNicolson"] if psi == 1.0 else DDT_ORDERS["Euler"]
 
 
 @dataclass
