@@ -764,7 +764,9 @@ def test_a_failed_run_leaves_the_study_of_the_others(tmp_path, monkeypatch, extr
     monkeypatch.setattr(driver, "check_run", lambda *a, **k: None)
     started = []
 
-    def run_case(case, level, np_, *, equilibrium, time_step_divisor=1, morphing=1.0):
+    def run_case(case, level, np_, *, build_dir, equilibrium, time_step_divisor=1,
+                 morphing=1.0):
+        assert build_dir == tmp_path
         run = layout.run_dir(case.name, level, tmp_path, time_step_divisor=time_step_divisor,
                              morphing=morphing)
         started.append(run.name)

@@ -172,14 +172,37 @@ def api_reference() -> str:
     import floatfoam
 
     lines = ["# Python API", "",
-             "The package's modules by subpackage, each with its docstring's first paragraph "
-             "and its public functions and classes (generated from the code).", ""]
+             "## The public API: `floatfoam.__all__`", "",
+             "What the command line is a layer over, importable from `floatfoam` itself "
+             "(each name loaded when first used):", "",
+             "```python", "import floatfoam", "",
+             'case = floatfoam.load_case("sphere")           # a name under cases/, or a folder',
+             "theory = floatfoam.theory_summary(case)        # floatfoam theory",
+             'series = floatfoam.decay_series(case, "cummins")  # floatfoam decay-model',
+             'fit = floatfoam.analyse_decay(series["time"], series["z"]).summary()',
+             'run = floatfoam.run_case(case, "coarse", 2)    # floatfoam run (OpenFOAM)',
+             "study = floatfoam.run_study(case, 2)           # floatfoam validate",
+             "```", ""]
+    for name in floatfoam.__all__:
+        if name.startswith("__") or name == "package_version":
+            continue
+        member = getattr(floatfoam, name)
+        try:
+            signature = str(inspect.signature(member))
+        except (TypeError, ValueError):
+            signature = ""
+        signature = "(…)" if len(signature) > 80 else signature
+        lines.append(f"- `{name}{signature}` (`{floatfoam.API[name]}`): "
+                     f"{_first_paragraph(member.__doc__)}")
+    lines += ["", "## The modules", "",
+              "The package's modules by subpackage, each with its docstring's first paragraph "
+              "and its public functions and classes (generated from the code).", ""]
     for info in sorted(pkgutil.walk_packages(floatfoam.__path__, "floatfoam."),
                        key=lambda i: i.name):
         if info.name.startswith("floatfoam.cli") or info.name == "floatfoam.__main__":
             continue
         module = importlib.import_module(info.name)
-        lines += [f"## `{info.name}`", "", _first_paragraph(module.__doc__), ""]
+        lines += [f"### `{info.name}`", "", _first_paragraph(module.__doc__), ""]
         for name, member in inspect.getmembers(module):
             if name.startswith("_") or getattr(member, "__module__", None) != info.name:
                 continue

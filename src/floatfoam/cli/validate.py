@@ -11,7 +11,6 @@ Laplacian's diffusivity 1/d; ``--no-morphing``: not run), then writes
 from __future__ import annotations
 
 import sys
-import time
 from pathlib import Path
 
 from floatfoam.cli.common import add_case_arguments, add_np_argument
@@ -55,66 +54,39 @@ def run(args) -> int:
     study of what finished is written), 2 bad input, 75 another run holds a run directory,
     128 + signal when interrupted (the same command resumes)."""
     from floatfoam import layout
-    from floatfoam.analysis.validation import (
-        plan,
-        study_markdown,
-        study_morphing,
-        validate_case,
-        write_study,
-    )
+    from floatfoam.analysis.validation import plan, study_markdown, study_morphing, write_study
     from floatfoam.case import load_case
     from floatfoam.cli.run import EXIT_LOCKED
-    from floatfoam.foam.driver import check_ranks, check_run, run_case
+    from floatfoam.foam.driver import check_ranks, check_run
     from floatfoam.foam.runlock import RunLockedError
-    from floatfoam.foam.runner import RunError
     from floatfoam.hydrostatics.theory import equilibrium
+    from floatfoam.workflow import run_study
 
     case = load_case(args.case, args.overrides)
     check_ranks(args.np, None)
     build = layout.build_dir()
     morphing = study_morphing(case.name, build, args.morphing, skip=args.no_morphing)
-    runs = plan(args.time_level, morphing)
     if args.time is not None and not args.slurm:
         raise InputError(f"--time {args.time}: a Slurm time limit, valid only with --slurm")
     if args.slurm and args.no_run:
         raise InputError("--slurm with --no-run: valid is one of them (--slurm submits the "
                          "runs; --no-run analyses finished ones)")
-    failed = []
-    if not args.no_run:
+    if args.slurm:
+        runs = plan(args.time_level, morphing)
         eq = equilibrium(case)
-        for level, divisor, factor in runs:  # every run checked before the first starts
+        for level, divisor, factor in runs:  # every run checked before the first is submitted
             check_run(case, level, args.np, eq, build_dir=build, time_step_divisor=divisor,
                       morphing=factor)
-        names = [layout.run_name(*run) for run in runs]
-        if args.slurm:
-            return _submit(case, args, runs, morphing)
-        print(f"[validate {case.name}] {len(runs)} runs on {args.np} rank(s): "
-              f"{', '.join(names)} (finished ones are reused, interrupted ones resume)",
-              file=sys.stderr)
-        for i, (level, divisor, factor) in enumerate(runs, 1):
-            name = layout.run_name(level, divisor, factor)
-            start = time.monotonic()
-            print(f"[validate {case.name}] run {i}/{len(runs)}: {name}", file=sys.stderr)
-            try:
-                done = run_case(case, level, args.np, equilibrium=eq,
-                                  time_step_divisor=divisor, morphing=factor)
-            except RunError as err:
-                print(f"floatfoam validate: run {name} failed: {err}", file=sys.stderr)
-                failed.append(name)
-                continue
-            except RunLockedError as err:
-                print(f"floatfoam validate: {err}", file=sys.stderr)
-                return EXIT_LOCKED
-            what = "already finished" if done.already_finished else \
-                f"{time.monotonic() - start:.0f} s wall"
-            print(f"[validate {case.name}] {name}: {done.info.get('cells')} cells, {what}",
-                  file=sys.stderr)
-    result = validate_case(case, build, args.time_level, morphing)
-    if not result["runs"] and failed:
-        return 1
+        return _submit(case, args, runs, morphing)
+    try:
+        outcome = run_study(case, args.np, time_level=args.time_level, morphing=morphing,
+                            build=build, run=not args.no_run)
+    except RunLockedError as err:
+        print(f"floatfoam validate: {err}", file=sys.stderr)
+        return EXIT_LOCKED
+    result, failed = outcome.study, outcome.failed
     if not result["runs"]:
-        raise InputError(f"case {case.name!r} has no finished run under {build}; valid: run "
-                         "`floatfoam validate` without --no-run first")
+        return 1
     out = layout.case_build_dir(case.name, build) / "validation"
     paths = write_study(result, Path(out))
     print(study_markdown(result))
