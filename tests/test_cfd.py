@@ -22,9 +22,9 @@ from floatfoam.foam.postproc import max_speed
 from floatfoam.foam.runner import RunError
 from floatfoam.hydrostatics.theory import theory_summary
 from floatfoam.layout import step_done
-from floatfoam.meshing.levels import tank
 from floatfoam.motion import dof_series, read_motion
 from floatfoam.potential.models import decay_series
+from floatfoam.tank import tank
 
 pytestmark = pytest.mark.openfoam
 

@@ -18,6 +18,7 @@ from floatfoam.meshing import body_surface, levels
 from floatfoam.meshing.domains import build_domain
 from floatfoam.meshing.planar import progression
 from floatfoam.meshing.volume_report import discrete_volume_report
+from floatfoam.tank import Pose, pose
 
 CASES = [folder.name for folder in list_cases()]
 R = math.sqrt(2)  # the default refinement ratio
@@ -41,7 +42,7 @@ def cases():
 def test_body_stl_is_closed_and_holds_its_volume(name, cases, tmp_path):
     case = cases[name]
     spec = levels.mesh_spec(case, "coarse")
-    written = body_surface.write_body(case, spec, levels.Pose(), tmp_path)
+    written = body_surface.write_body(case, spec, Pose(), tmp_path)
     again = stl_body(written["stl"])  # raises unless watertight and consistently oriented
     vertices, faces = again.vertices, again.faces
     assert open_edges(faces) == 0
@@ -199,7 +200,7 @@ def test_gmsh_to_foam_and_check_mesh(cases, tmp_path):
 SIGNALS_AFTER_GMSH = """
 import os, signal, sys
 from floatfoam.interrupts import SignalInterruptError, signals_interrupt
-from floatfoam.meshing import gmshio
+from floatfoam import gmshio
 with signals_interrupt():
     with gmshio.session("probe"):
         pass
@@ -257,7 +258,7 @@ def _prism_nodes(path):
     """The nodes of every prism of an MSH file, (n, 6, 3)."""
     import gmsh
 
-    from floatfoam.meshing import gmshio
+    from floatfoam import gmshio
 
     with gmshio.session("read"):
         gmsh.open(str(path))
@@ -312,7 +313,7 @@ def _group_nodes(path, name):
     """The coordinates of the nodes of a physical group (a patch) of an MSH file, (n, 3)."""
     import gmsh
 
-    from floatfoam.meshing import gmshio
+    from floatfoam import gmshio
 
     with gmshio.session("read"):
         gmsh.open(str(path))
@@ -343,7 +344,7 @@ def test_prism_layers_at_an_ellipsoid_in_the_half_domain(tmp_path, release, axis
     # the body's nodes, remeshed on OpenCASCADE's triangles, moved back onto the ellipsoid
     from floatfoam.bodies.geometry import rotation
 
-    where = levels.pose(case, "release")
+    where = pose(case, "release")
     local = (_group_nodes(tmp_path / "e.msh", "body") - [0.0, 0.0, where.z_c]) \
         @ rotation(where.heel, where.trim)
     assert np.abs(np.sum((local / case.body.axes) ** 2, axis=1) - 1.0).max() < 1e-9

@@ -21,11 +21,11 @@ from floatfoam.foam import domain, render
 from floatfoam.hydrostatics.fluid_domain import check_release
 from floatfoam.hydrostatics.gz import MAX_STEPS, check_angles, gz_curve
 from floatfoam.hydrostatics.theory import equilibrium
-from floatfoam.meshing.levels import Pose
 from floatfoam.potential.bounded import Heartbeat
 from floatfoam.potential.models import BYTES_PER_SAMPLE, SERIES_MEMORY, check_duration, decay_series
 from floatfoam.potential.rigid_body import _to_earth, yaw_matrix
 from floatfoam.potential.timedomain import cummins_decay
+from floatfoam.tank import Pose
 
 
 @pytest.fixture

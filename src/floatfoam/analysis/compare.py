@@ -214,8 +214,8 @@ def settled_level(case, dof: str, run: Path, theory: TheorySummary) -> float | N
     level = Path(run).name.split("-")[0]
     if info.get("z_G_equilibrium") is None or level not in layout.LEVELS:
         return None
-    from floatfoam.meshing.levels import tank
     from floatfoam.meshing.volume_report import discrete_volume_report
+    from floatfoam.tank import tank
 
     box, area, release = tank(case), theory.waterplane_area, case.release["heave"]
     free = {"wedge": math.pi * box.half_length**2,

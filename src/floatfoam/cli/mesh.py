@@ -20,7 +20,8 @@ from floatfoam.cli.common import add_case_arguments, dump_json
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.fluid_domain import check_release
 from floatfoam.layout import LEVELS
-from floatfoam.meshing.levels import POSES, mesh_spec, pose
+from floatfoam.meshing.levels import mesh_spec
+from floatfoam.tank import POSES, pose
 
 
 def add_level_argument(parser) -> None:

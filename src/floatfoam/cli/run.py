@@ -154,7 +154,7 @@ def _still_water(case, run_dir: Path) -> None:
     """The currents the scheme drives around a held body (analysis.stillwater): one line, and
     every written time in still_water.json of the run directory."""
     from floatfoam.analysis import stillwater
-    from floatfoam.meshing.levels import tank
+    from floatfoam.tank import tank
 
     band = tank(case).band
     try:

@@ -20,8 +20,9 @@ from floatfoam.case import Case
 from floatfoam.errors import InputError
 from floatfoam.foam.ogrid import OGrid
 from floatfoam.layout import LEVELS
-from floatfoam.meshing.levels import Pose, level_index, refinement_ratio
+from floatfoam.meshing.levels import level_index, refinement_ratio
 from floatfoam.settings import max_cells, memory_text
+from floatfoam.tank import Pose
 
 MESHERS = ("gmsh", "ogrid")
 _PLANE = {"2d": ("frontAndBack",), "ogrid": ("frontAndBack",), "wedge": ("wedge0", "wedge1"),
@@ -96,7 +97,7 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
     if mesher == "ogrid":
         return _ogrid_plan(case, level, release, local)
     from floatfoam.meshing.domains import check_layers, default_kind, half_plane
-    from floatfoam.meshing.levels import body_extents, tank
+    from floatfoam.tank import body_extents, tank
 
     kind = default_kind(case, release)
     check_layers(case, kind)
@@ -158,7 +159,7 @@ def clamped_bottom(mesh: RunMesh, case: Case, release: Pose,
     An overshoot within 1 % of the band between the distances is let pass: the scale there is
     below 3e-4 (it falls as the square of the distance left to the outer one)."""
     from floatfoam.hydrostatics.theory import lowest_point
-    from floatfoam.meshing.levels import tank
+    from floatfoam.tank import tank
 
     if mesh.motion != "distances":
         return None

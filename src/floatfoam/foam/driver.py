@@ -317,7 +317,7 @@ def mesh_pose(case: Case, state: dict, equilibrium: Equilibrium):
     if case.settings.mesh.mesher == "ogrid":
         raise InputError("run.mesh_pose = 'equilibrium' needs a gmsh mesh; valid with "
                          "mesh.mesher = 'ogrid' is run.mesh_pose = 'release'")
-    from floatfoam.meshing.levels import pose
+    from floatfoam.tank import pose
 
     made = pose(case, "equilibrium", equilibrium)
     state["mesh_offset"] = [0.0, 0.0, float(state["pose"].z_c - made.z_c)]

@@ -31,7 +31,7 @@ from floatfoam.settings import time_scheme_coefficient
 
 def release_state(case: Case, eq: Equilibrium) -> dict:
     """The body at release, from the case's equilibrium ``eq``: its pose (the equilibrium
-    attitude plus the [release] offsets, :func:`floatfoam.meshing.levels.pose`), the centre of
+    attitude plus the [release] offsets, :func:`floatfoam.tank.pose`), the centre of
     mass there (earth frame), its attitude as a rotation tensor, and the equilibrium's z of G
     and attitude (the reference of the motion series' angles). Raises InputError for a
     release outside the tank (:func:`floatfoam.hydrostatics.fluid_domain.check_release`),

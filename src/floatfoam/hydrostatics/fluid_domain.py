@@ -6,9 +6,9 @@ inside the case's tank. The one home of these checks; every command goes through
   command that solves the equilibrium (theory, gz, potential, decay-model, mesh, run …)
   refuses a shallower fluid.
 * :func:`check_release`: a decay test starts from the release
-  (:func:`floatfoam.meshing.levels.pose`: the equilibrium displaced by the ``[release]``
+  (:func:`floatfoam.tank.pose`: the equilibrium displaced by the ``[release]``
   offsets), which must keep the body inside the case's tank
-  (:func:`floatfoam.meshing.levels.tank`): above its bottom (``fluid.depth``, else
+  (:func:`floatfoam.tank.tank`): above its bottom (``fluid.depth``, else
   ``domain.depth`` or its deep-water default) and below its top (``domain.air_height`` or its
   default). Every command that takes a release calls it before it computes or writes
   anything: decay-model (:func:`floatfoam.potential.models.decay_series`), run and the
@@ -60,7 +60,7 @@ def check_release(case, eq):
     outside the tank (module docstring): one line naming the release key, its value, where the
     body then reaches and the key's valid range. A tank that does not hold the body even at
     equilibrium names the tank's key instead."""
-    from floatfoam.meshing.levels import Pose, pose, tank
+    from floatfoam.tank import Pose, pose, tank
 
     box = tank(case)
     bottom, top = -box.depth, box.air_height
@@ -111,7 +111,7 @@ def _refuse_angles(case, box, at_rest, turned) -> None:
     """The release's heel and trim take the body out even without its heave: the largest
     fraction of them (both scaled together) that keeps it in, by bisection from the
     equilibrium attitude (inside) towards the release's (outside)."""
-    from floatfoam.meshing.levels import Pose
+    from floatfoam.tank import Pose
 
     def at(fraction):
         return Pose(at_rest.z_c, at_rest.heel + fraction * (turned.heel - at_rest.heel),
@@ -135,7 +135,7 @@ def _refuse_angles(case, box, at_rest, turned) -> None:
 
 def _bottom_key(case, box) -> str:
     """The key that sets the tank's bottom, and its value."""
-    from floatfoam.meshing.levels import DOMAIN_DEFAULTS
+    from floatfoam.tank import DOMAIN_DEFAULTS
 
     if math.isfinite(case.depth):
         return f"fluid.depth = {case.depth:g} m"
@@ -147,7 +147,7 @@ def _bottom_key(case, box) -> str:
 
 def _top_key(case, box) -> str:
     """The key that sets the tank's top, and its value."""
-    from floatfoam.meshing.levels import DOMAIN_DEFAULTS
+    from floatfoam.tank import DOMAIN_DEFAULTS
 
     if case.settings.domain.air_height is not None:
         return f"domain.air_height = {box.air_height:g} m"

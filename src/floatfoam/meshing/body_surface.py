@@ -16,10 +16,12 @@ from pathlib import Path
 
 import numpy as np
 
+from floatfoam import gmshio
 from floatfoam.bodies import shapes as bodies
 from floatfoam.bodies.geometry import mesh_volume, to_earth
-from floatfoam.meshing import gmshio, sections
-from floatfoam.meshing.levels import MeshSpec, Pose
+from floatfoam.meshing import sections
+from floatfoam.meshing.levels import MeshSpec
+from floatfoam.tank import Pose
 
 SECTION_ASPECT = 4.0  # axial spacing of a section's prism ≤ 4 h: a closed, light STL
 

@@ -39,13 +39,15 @@ from pathlib import Path
 
 import numpy as np
 
+from floatfoam import gmshio
 from floatfoam.bodies import shapes as bodies
 from floatfoam.bodies.geometry import rotation
 from floatfoam.bodies.surfaces import compile_expression
 from floatfoam.errors import InputError
-from floatfoam.meshing import gmshio, sections
+from floatfoam.meshing import sections
 from floatfoam.meshing.body_surface import place
-from floatfoam.meshing.levels import MeshSpec, Pose, Tank
+from floatfoam.meshing.levels import MeshSpec
+from floatfoam.tank import Pose, Tank
 
 LAYER_GROWTH = 1.2  # each prism layer this much thicker than the one below it
 FEATURE_ANGLE = 20.0  # degrees: sharper turns between triangles stay edges (pontoon: 25.6°)

@@ -18,8 +18,9 @@ from floatfoam.errors import InputError
 from floatfoam.hydrostatics.immersion import immersed, mesh_immersed, section_immersed
 from floatfoam.meshing import body_surface, sections
 from floatfoam.meshing.domain3d import domain_3d
-from floatfoam.meshing.levels import Pose, mesh_spec, pose, tank
+from floatfoam.meshing.levels import mesh_spec
 from floatfoam.meshing.planar import even_polygon, planar_domain
+from floatfoam.tank import Pose, pose, tank
 
 KINDS = ("auto", "2d", "wedge", "3d", "3d-half")
 

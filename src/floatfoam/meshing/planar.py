@@ -38,9 +38,11 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import brentq
 
+from floatfoam import gmshio
 from floatfoam.errors import InputError
-from floatfoam.meshing import body_surface, gmshio, sections
-from floatfoam.meshing.levels import MeshSpec, Pose, Tank
+from floatfoam.meshing import body_surface, sections
+from floatfoam.meshing.levels import MeshSpec
+from floatfoam.tank import Pose, Tank
 
 WEDGE_ANGLE = 5.0  # degrees, the usual OpenFOAM wedge (≤ 5° keeps the wedge cells near-square)
 

@@ -19,9 +19,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from floatfoam import gmshio
 from floatfoam.bodies.geometry import to_earth
 from floatfoam.hydrostatics.immersion import clip_triangles
-from floatfoam.meshing import gmshio
 from floatfoam.potential.sections import panel_nodes, wetted_contour
 
 DEFAULT_PANELS_3D = 800  # hemisphere: ≤ 1.6 % from Hulme (1982) at ka ≤ 2 (see tests/)
