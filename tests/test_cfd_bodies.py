@@ -7,102 +7,27 @@ measured numbers are in the cases' READMEs. The tolerances come from the numbers
 this machine; the reason for each is written beside it.
 """
 
-import json
 import math
 
 import numpy as np
 import pytest
+from cfdcases import (
+    SWAY_CHECKED,
+    SWAY_TOLERANCE,
+    analysed,
+    cfd,
+    cummins,
+    early_period,
+    extrema,
+    first_sway,
+    potential_period,
+)
 from steps import FAST_STEP
 
-from floatfoam.analysis.decay import analyse_decay, decay_dict, find_crossings
-from floatfoam.analysis.extrema import first_extrema, period_from_extrema
-from floatfoam.case import load_case
-from floatfoam.dofs import dof
-from floatfoam.foam.driver import run_case
-from floatfoam.hydrostatics.theory import equilibrium, theory_summary
-from floatfoam.motion import dof_series, read_motion
+from floatfoam.analysis.decay import analyse_decay, find_crossings
 from floatfoam.potential.models import decay_series
 
 pytestmark = pytest.mark.openfoam
-
-
-def cfd(name, tmp_path, overrides=()):
-    """The coarse run of case ``name`` on 2 ranks; its case, theory, motion and run info."""
-    case = load_case(name, list(overrides))
-    result = run_case(case, "coarse", 2, build_dir=tmp_path)
-    motion = read_motion(result.motion_csv)
-    assert motion["time"][-1] == pytest.approx(result.info["end_time"], abs=1e-6)
-    for column in ("z", "roll", "y"):
-        assert np.all(np.isfinite(motion[column]))
-    return case, theory_summary(case), motion, result.info
-
-
-_COEFFICIENTS = {}
-
-
-def cummins(case, **options) -> dict:
-    """Cummins' model of ``case`` (`floatfoam decay-model --model cummins`) in the DoFs the
-    CFD leaves free (sway with a heel: a free body does not roll about G alone); the radiation
-    coefficients are computed once per body, mass and fluid (the sphere's three releases share
-    them: ~12 s of BEM each)."""
-    from floatfoam.potential.radiation import radiation_coefficients
-
-    key = json.dumps([case.raw.get(t) for t in ("body", "mass", "fluid", "potential")],
-                     sort_keys=True, default=str)
-    if key not in _COEFFICIENTS:
-        _COEFFICIENTS[key] = radiation_coefficients(case, equilibrium(case))
-    return decay_series(case, "cummins", coefficients=_COEFFICIENTS[key], **options)
-
-
-def potential_period(case, name: str) -> float:
-    """Damped period of DoF ``name`` by Cummins' model (potential-flow added mass and
-    radiation damping)."""
-    series = cummins(case)
-    entry = dof(name)
-    scale = math.pi / 180.0 if entry.is_angle else 1.0
-    return analyse_decay(series["time"], series[entry.column] * scale).summary()["period_mean"]
-
-
-def extrema(t, x, count: int):
-    """Times of the first ``count`` extrema of a smooth record (sign changes of its slope)."""
-    turns = first_extrema(x, count)
-    assert len(turns) >= count, f"only {len(turns)} extrema"
-    return t[turns]
-
-
-def early_period(t, x, count: int = 4) -> float:
-    """The period from the first ``count`` extrema (analysis.extrema). A heavily damped record
-    (ζ ≈ 0.2) leaves the noise after 1.5 cycles, too few for the decay fit; the extrema still
-    time its first cycles."""
-    turns = first_extrema(x, count)
-    assert len(turns) >= count, f"only {len(turns)} extrema"
-    return period_from_extrema(t, turns)
-
-
-def first_sway(t, y, period: float) -> float:
-    """G's largest sideways excursion from its release position over the first roll period."""
-    first = t <= period
-    excursion = y[first] - y[0]
-    return float(excursion[np.argmax(np.abs(excursion))])
-
-
-# Sway with the roll: G's first swing within 10 % of the coupled model. Measured on the coarse
-# meshes, make test's records and step: ellipse −7.57 mm against −7.65 mm (−1 %), hyperbola
-# −9.39 against −9.07 mm (+4 %), ellipsoid (3D) −7.76 against −8.34 mm (−7 %; by 0.35 s).
-# On the 2D studies' levels (make validate, relaxation 1.0, whole records; coarse / medium /
-# fine): ellipse −7.47 / −7.28 / −7.31 mm (fine −4 %), hyperbola −9.20 / −9.33 / −9.13 mm
-# (+0.7 %); the mesh moves the swing by ≤ 2.5 %, so 10 % is for the 3D ellipsoid's −7 %,
-# whose finer level was not run. Below 1 mm (the box, whose G is near its roll centre: 0.38
-# against 0.39 mm) the swing is within the CFD's drift and is not checked.
-SWAY_TOLERANCE, SWAY_CHECKED = 0.10, 1e-3
-
-
-def analysed(motion, name: str) -> dict:
-    """The decay analysis of DoF ``name``: its summary (period, damping ratio, cycles) and
-    the fitted equilibrium level."""
-    t, x = dof_series(motion, name)
-    result = analyse_decay(t, x)
-    return {**result.summary(), "equilibrium": decay_dict(result)["equilibrium"]}
 
 
 # make test's heave records: the first four extrema and the settled level are in by 2.0 s

@@ -135,7 +135,7 @@ def test_the_flume_section_rolls_with_its_sway_held(tmp_path):
     on ζ, which make test's step moves by up to 13 % (tests/steps.py) and the mesh motion by
     1.3 % (the diffusivity 1/d: flume_section_roll's README), against 72 % between held and
     free."""
-    from test_cfd_bodies import analysed, cfd, cummins
+    from cfdcases import analysed, cfd, cummins
 
     from floatfoam.analysis.decay import analyse_decay
 

@@ -9,8 +9,8 @@ import json
 
 import numpy as np
 import pytest
+from fakes import fake_run
 from steps import FAST_STEP
-from test_pictures import fake_run
 
 from floatfoam import layout
 from floatfoam.cli import main

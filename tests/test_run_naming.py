@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 
 import pytest
-from test_pictures import fake_run
+from fakes import fake_run
 
 from floatfoam.cli import main
 from floatfoam.cli.common import resolve_run
