@@ -8,6 +8,7 @@ import time
 
 import numpy as np
 import pytest
+from references import HULME
 from ursell_reference import ursell_heave
 
 from floatfoam.bodies.shapes import EllipticCylinder
@@ -21,10 +22,6 @@ from floatfoam.potential.radiation import (
     radiation_coefficients,
 )
 from floatfoam.potential.resonance import damping_ratio, natural_frequency
-
-# Hulme (1982, J. Fluid Mech. 121, 443–463), floating hemisphere in heave, infinite depth:
-# A / (ρ·2/3·πa³) and B / (ρ·2/3·πa³·ω) at ka = ω²a/g.
-HULME = {0.5: (0.5861, 0.3391), 1.0: (0.4284, 0.2484), 2.0: (0.3884, 0.1031)}
 
 
 def test_hemisphere_heave_against_hulme():

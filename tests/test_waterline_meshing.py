@@ -17,7 +17,7 @@ import sys
 
 import numpy as np
 import pytest
-from test_potential import HULME
+from references import HULME
 
 from floatfoam.case import load_case
 from floatfoam.potential.radiation import potential_summary
