@@ -901,5 +901,5 @@ def test_time_order_is_read_from_the_schemes(tmp_path, default, order):
     schemes.write_text(text.replace("default Euler;", f"default {default};"))
     assert time_order(case, schemes) == order
     schemes.write_text(text.replace("default Euler;", "default localEuler;"))
-    with pytest.raises(ValueError, match=r"fvSchemes: ddtSchemes default 'localEuler' has no"):
+    with pytest.raises(InputError, match=r"fvSchemes: ddtSchemes default 'localEuler' has no"):
         time_order(case, schemes)

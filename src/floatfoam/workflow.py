@@ -39,7 +39,8 @@ def run_study(case, np_: int = 1, *, time_level: str = "medium", morphing: float
     run is named in ``failed`` and the others still run; RunLockedError (another run holds a
     run folder) and the interrupts propagate. ``say`` gets the progress lines.
 
-    InputError before any run when the inputs are bad, or when no run has finished."""
+    InputError before any run when the inputs are bad, or when no run has finished and none
+    failed (every run failed: an empty study and the failures named)."""
     from floatfoam.analysis.validation import plan, validate_case
     from floatfoam.foam.driver import check_ranks, check_run, run_case
     from floatfoam.foam.runner import RunError

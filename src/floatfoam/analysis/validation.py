@@ -131,7 +131,7 @@ def time_order(case, schemes: Path | None = None) -> float:
     """The formal order of the time scheme the case's runs take: Crank–Nicolson where the case
     names it (``run.time_scheme``), else the ``ddtSchemes`` default of the shared fvSchemes
     (``schemes``, default cases/_common/system/fvSchemes), read there so that the GCI follows
-    a change of it. A scheme of no known order is refused (ValueError naming it)."""
+    a change of it. A scheme of no known order is refused (InputError naming it)."""
     psi = time_scheme_coefficient(case.settings.run.time_scheme)
     if psi is None:
         from foamlib import FoamFile
@@ -141,7 +141,7 @@ def time_order(case, schemes: Path | None = None) -> float:
         words = [str(w) for w in (entry if isinstance(entry, (list, tuple)) else
                                   str(entry).split())]
         if words[0] not in DDT_ORDERS:
-            raise ValueError(f"{path}: ddtSchemes default {' '.join(words)!r} has no formal "
+            raise InputError(f"{path}: ddtSchemes default {' '.join(words)!r} has no formal "
                              f"order here: valid is {', '.join(DDT_ORDERS)}")
         psi = float(words[1]) if words[0] == "CrankNicolson" and len(words) > 1 else None
         if psi is None:
