@@ -29,3 +29,34 @@ def test_theory_and_potential_flow_import_no_mesher_and_no_run(package):
         above = {name for name in imported(path)
                  if name.startswith(("floatfoam.meshing", "floatfoam.foam"))}
         assert not above, f"{path.relative_to(SRC)} imports {sorted(above)}"
+
+
+def module_file(name: str) -> Path | None:
+    """The source file of a floatfoam module name (None for a name that is no module)."""
+    parts = name.split(".")[1:]
+    for path in (SRC.joinpath(*parts).with_suffix(".py"), SRC.joinpath(*parts, "__init__.py")):
+        if parts and path.is_file():
+            return path
+    return None
+
+
+def reachable(name: str) -> set[str]:
+    """Every floatfoam module that importing ``name`` can load, directly or through others,
+    at their tops or inside their functions."""
+    seen, todo = set(), [name]
+    while todo:
+        path = module_file(todo.pop())
+        if path is None or path in seen:
+            continue
+        seen.add(path)
+        todo += [n for n in imported(path) if n.startswith("floatfoam.")]
+    return {str(path.relative_to(SRC)) for path in seen}
+
+
+@pytest.mark.parametrize("module", ["floatfoam.tank", "floatfoam.gmshio"])
+def test_the_shared_pieces_reach_no_stage_above_them(module):
+    # not even lazily: a function-level import of the theory from the tank was a loop
+    # (hydrostatics → tank → hydrostatics) that the direct check above did not see
+    stages = ("hydrostatics/", "potential/", "meshing/", "foam/", "analysis/", "cli/")
+    above = sorted(p for p in reachable(module) if p.startswith(stages))
+    assert reachable(module) and not above, f"{module} reaches {above}"

@@ -1,5 +1,6 @@
-"""The Makefile's targets that hold logic of their own: `make clean` (its recipe, as `make -n`
-prints it, run in a scratch project folder: never on this one) and `make pictures`."""
+"""The Makefile's logic of its own: `make clean` (its recipe, as `make -n` prints it, run in a
+scratch project folder: never on this one), `make pictures`, and the case targets (one per
+folder of cases/)."""
 
 import os
 import subprocess

@@ -13,6 +13,7 @@ from floatfoam.bodies.geometry import mesh_volume, open_edges
 from floatfoam.bodies.surfaces import stl_body
 from floatfoam.case import load_case
 from floatfoam.errors import InputError
+from floatfoam.hydrostatics.theory import equilibrium
 from floatfoam.layout import CASES_DIR, list_cases
 from floatfoam.meshing import body_surface, levels
 from floatfoam.meshing.domains import build_domain
@@ -71,8 +72,6 @@ def test_discrete_volume_report(name, cases):
     assert report["immersed_exact"] == pytest.approx(case.displacement, rel=1e-9)
     assert abs(report["immersed_error"]) < volume_tolerance("coarse")
     # the equilibrium shift is the volume deficit spread over the waterplane (first order)
-    from floatfoam.hydrostatics.theory import equilibrium
-
     area = equilibrium(case).immersed.waterplane_area
     deficit = report["immersed_discrete"] - report["immersed_exact"]
     assert report["equilibrium_shift"] == pytest.approx(deficit / area, rel=0.05, abs=1e-9)
@@ -344,7 +343,7 @@ def test_prism_layers_at_an_ellipsoid_in_the_half_domain(tmp_path, release, axis
     # the body's nodes, remeshed on OpenCASCADE's triangles, moved back onto the ellipsoid
     from floatfoam.bodies.geometry import rotation
 
-    where = pose(case, "release")
+    where = pose(case, "release", equilibrium(case))
     local = (_group_nodes(tmp_path / "e.msh", "body") - [0.0, 0.0, where.z_c]) \
         @ rotation(where.heel, where.trim)
     assert np.abs(np.sum((local / case.body.axes) ** 2, axis=1) - 1.0).max() < 1e-9

@@ -83,15 +83,14 @@ def tank(case: Case) -> Tank:
 def pose(case: Case, which: str = "release", equilibrium=None) -> Pose:
     """The body frame's placement: ``body`` (identity), ``equilibrium`` (the theory's) or
     ``release`` (equilibrium + the case's [release] offsets: the initial state of a decay
-    test). ``equilibrium`` may be passed to avoid solving for it again."""
+    test). ``equilibrium``: the case's (:func:`floatfoam.hydrostatics.theory.equilibrium`),
+    needed by all but ``body``: the tank sits below the hydrostatics, which it does not call."""
     if which not in POSES:
         raise InputError(f"--pose {which!r}: valid poses are {', '.join(POSES)}")
     if which == "body":
         return Pose()
     if equilibrium is None:
-        from floatfoam.hydrostatics.theory import equilibrium as solve
-
-        equilibrium = solve(case)
+        raise TypeError(f"pose(case, {which!r}) needs the case's equilibrium")
     base = Pose(equilibrium.z_c, equilibrium.heel, equilibrium.trim)
     if which == "equilibrium":
         return base

@@ -9,6 +9,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Literal
 
 from floatfoam import layout
 from floatfoam.errors import InputError
@@ -28,33 +29,49 @@ def _stderr(line: str) -> None:
     print(line, file=sys.stderr)
 
 
-def run_study(case, np_: int = 1, *, time_level: str = "medium", morphing: float | None = 1.5,
-              build: Path | None = None, run: bool = True,
-              say: Callable[[str], None] = _stderr) -> StudyOutcome:
+def check_study(case, np_: int, runs: list[tuple[str, int, float]], build: Path) -> None:
+    """Every run of a study (``runs``: :func:`floatfoam.analysis.validation.plan`'s (level,
+    time-step divisor, morphing factor)) checked as :func:`floatfoam.foam.driver.check_run`
+    checks one, before the first starts or is submitted. Raises InputError; writes nothing."""
+    from floatfoam.foam.driver import check_ranks, check_run
+    from floatfoam.hydrostatics.theory import equilibrium
+
+    check_ranks(np_, None)
+    eq = equilibrium(case)
+    for level, divisor, factor in runs:
+        check_run(case, level, np_, eq, build_dir=build, time_step_divisor=divisor,
+                  morphing=factor)
+
+
+def run_study(case, np_: int = 1, *, time_level: str = "medium",
+              morphing: float | None | Literal["auto"] = "auto", build: Path | None = None,
+              run: bool = True, say: Callable[[str], None] = _stderr) -> StudyOutcome:
     """The grid, time-step and mesh-motion study of ``case`` (a :class:`floatfoam.case.Case`)
     on ``np_`` MPI ranks: every run of :func:`floatfoam.analysis.validation.plan` checked
     before the first starts, then each run (a finished one reused, an interrupted one
     resumed), then the study of what finished (``validate_case``). ``morphing``: the mesh
-    motion's run's factor, None for none. ``run`` False analyses finished runs only. A failed
-    run is named in ``failed`` and the others still run; RunLockedError (another run holds a
-    run folder) and the interrupts propagate. ``say`` gets the progress lines.
+    motion's run's factor, None for none, "auto" as ``floatfoam validate`` takes it (that of
+    the study already written when its run is still finished, else 1.5:
+    :func:`floatfoam.analysis.validation.study_morphing`). ``run`` False analyses finished
+    runs only. A failed run is named in ``failed`` and the others still run; RunLockedError
+    (another run holds a run folder) and the interrupts propagate. ``say`` gets the progress lines.
 
     InputError before any run when the inputs are bad, or when no run has finished and none
     failed (every run failed: an empty study and the failures named)."""
-    from floatfoam.analysis.validation import plan, validate_case
-    from floatfoam.foam.driver import check_ranks, check_run, run_case
+    from floatfoam.analysis.validation import plan, study_morphing, validate_case
+    from floatfoam.foam.driver import check_ranks, run_case
     from floatfoam.foam.runner import RunError
     from floatfoam.hydrostatics.theory import equilibrium
 
     check_ranks(np_, None)
     build = build or layout.build_dir()
+    if morphing == "auto":
+        morphing = study_morphing(case.name, build)
     runs = plan(time_level, morphing)
     failed: list[str] = []
     if run:
+        check_study(case, np_, runs, build)
         eq = equilibrium(case)
-        for level, divisor, factor in runs:  # every run checked before the first starts
-            check_run(case, level, np_, eq, build_dir=build, time_step_divisor=divisor,
-                      morphing=factor)
         names = [layout.run_name(*item) for item in runs]
         say(f"[validate {case.name}] {len(runs)} runs on {np_} rank(s): {', '.join(names)} "
             "(finished ones are reused, interrupted ones resume)")

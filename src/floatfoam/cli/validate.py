@@ -57,10 +57,9 @@ def run(args) -> int:
     from floatfoam.analysis.validation import plan, study_markdown, study_morphing, write_study
     from floatfoam.case import load_case
     from floatfoam.cli.run import EXIT_LOCKED
-    from floatfoam.foam.driver import check_ranks, check_run
+    from floatfoam.foam.driver import check_ranks
     from floatfoam.foam.runlock import RunLockedError
-    from floatfoam.hydrostatics.theory import equilibrium
-    from floatfoam.workflow import run_study
+    from floatfoam.workflow import check_study, run_study
 
     case = load_case(args.case, args.overrides)
     check_ranks(args.np, None)
@@ -73,10 +72,7 @@ def run(args) -> int:
                          "runs; --no-run analyses finished ones)")
     if args.slurm:
         runs = plan(args.time_level, morphing)
-        eq = equilibrium(case)
-        for level, divisor, factor in runs:  # every run checked before the first is submitted
-            check_run(case, level, args.np, eq, build_dir=build, time_step_divisor=divisor,
-                      morphing=factor)
+        check_study(case, args.np, runs, build)  # before the first is submitted
         return _submit(case, args, runs, morphing)
     try:
         outcome = run_study(case, args.np, time_level=args.time_level, morphing=morphing,

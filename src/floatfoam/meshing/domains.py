@@ -79,6 +79,10 @@ def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release
     if kind not in KINDS:
         raise InputError(f"--kind {kind!r}: valid kinds are {', '.join(KINDS)}")
     spec, box = mesh_spec(case, level), tank(case)
+    if equilibrium is None and pose_name != "body":
+        from floatfoam.hydrostatics.theory import equilibrium as solve
+
+        equilibrium = solve(case)
     where = pose(case, pose_name, equilibrium)
     kind = default_kind(case, where) if kind == "auto" else kind
     if kind == "2d" and not case.body.is_section:
