@@ -149,7 +149,7 @@ def test_sphere_heave_from_three_heights(tmp_path, name, release, tolerance, ste
 def test_lab_sphere_first_cycle_against_the_basin(tmp_path):
     """Kramer et al.'s (2021) sphere dropped from 0.1 D: the first period and first trough of
     the coarse wedge, reduced as the basin reduces its records about the level the body
-    settles at (analysis.compare.settled_level: known here, so the record's first 1.1 s is
+    settles at (analysis.settled.settled_level: known here, so the record's first 1.1 s is
     enough), against the four drops' reference.
 
     The case's grid study (`make validate CASE=lab_sphere`, its README) puts the fine level
@@ -159,8 +159,9 @@ def test_lab_sphere_first_cycle_against_the_basin(tmp_path):
     by 0.4 % from coarse to fine, the halved time step by 0.6 %, the basin's ± 0.4 %. (At the
     six-DoF morphing distances 0.2/1.2 m, the same coarse numbers to 0.02 %.)"""
     from floatfoam import layout
-    from floatfoam.analysis.compare import reference_entry, settled_level
     from floatfoam.analysis.extrema import crossing_reduction
+    from floatfoam.analysis.measured import reference_entry
+    from floatfoam.analysis.settled import settled_level
 
     case, theory, motion, info = cfd("lab_sphere", tmp_path, ["run.end_time=1.1"])
     assert info["mesh"] == "wedge"

@@ -16,17 +16,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from floatfoam.analysis.compare import (
+from floatfoam.analysis.compare import compare_case, excited_dofs
+from floatfoam.analysis.comparison_table import (
     TABLE_HEADER,
-    cfd_runs,
-    compare_case,
     comparison_markdown,
     comparison_table,
-    excited_dofs,
-    reference_entry,
     write_comparison,
 )
 from floatfoam.analysis.cummins import MODEL, ModelRecord
+from floatfoam.analysis.measured import reference_entry
+from floatfoam.analysis.runs import cfd_runs
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.layout import mark_done

@@ -15,18 +15,14 @@ import pytest
 
 from floatfoam import layout
 from floatfoam.analysis import gci
-from floatfoam.analysis.compare import (
-    compare_case,
-    record_fit,
-    reference_entry,
-    settled_level,
-)
+from floatfoam.analysis.compare import compare_case
 from floatfoam.analysis.decay import analyse_decay
 from floatfoam.analysis.extrema import crossing_reduction
-from floatfoam.analysis.measured import reference_record
+from floatfoam.analysis.measured import record_fit, reference_entry, reference_record
 from floatfoam.analysis.overlay import decay_overlay
 from floatfoam.analysis.plots import free_decay_curve
 from floatfoam.analysis.report import Sources, build_report
+from floatfoam.analysis.settled import settled_level
 from floatfoam.analysis.validation import (
     DEFAULT_MORPHING,
     _convergence,

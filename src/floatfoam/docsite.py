@@ -222,7 +222,7 @@ def validation_page(build: Path | None = None) -> str:
     """Each case's measured references (its ``[reference]`` table: value, uncertainty, source)
     and, where ``floatfoam validate`` has left a study of the case's settings of today in the
     build folder, the CFD's finest level ± U_num for each quantity."""
-    from floatfoam.analysis.compare import reference_entry
+    from floatfoam.analysis.measured import reference_entry
     from floatfoam.analysis.uncertainty import current_study
     from floatfoam.analysis.validation import QUANTITIES
     from floatfoam.case import load_case

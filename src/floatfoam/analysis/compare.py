@@ -36,30 +36,26 @@ signal) gives a row with the reason, never a missing row.
 
 from __future__ import annotations
 
-import csv
-import json
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from floatfoam import dofs, layout
+from floatfoam import dofs
+from floatfoam.analysis.comparison_table import THEORY, table_row
 from floatfoam.analysis.cummins import MODEL, ModelFit, ModelRecord, cummins_model, fit_model
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.analysis.extrema import crossing_reduction
-from floatfoam.analysis.measured import fit_record, reference_record
+from floatfoam.analysis.measured import record_fit, reference_entry
+from floatfoam.analysis.runs import current_runs, stale_note
+from floatfoam.analysis.settled import first_cycles, settled_level, theory_equilibrium
 from floatfoam.analysis.uncertainty import current_study, fine_band
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.motion import dof_series, file_unit, read_motion
 from floatfoam.potential.summary import PotentialSummary
 
-CSV_FIELDS = ("case", "dof", "source", "period", "period_lo", "period_hi", "damping_ratio",
-              "damping_lo", "damping_hi", "period_rel_diff", "damping_rel_diff",
-              "period_rel_diff_measured", "damping_rel_diff_measured", "basis", "note")
 #: the first cycles' model row (:func:`potential_first_cycles`), their Δ's basis
 FIRST_CYCLES_MODEL = "potential flow (Cummins, exact restoring)"
-THEORY = "linear theory (exact)"
 
 
 @dataclass
@@ -98,142 +94,6 @@ def excited_dofs(case, reference: dict | None = None) -> list[str]:
             if dof in moved or f"{dof}_period" in reference or f"{dof}_damping_ratio" in reference]
 
 
-def cfd_runs(case_name: str, build_dir: str | Path) -> list[tuple[str, Path]]:
-    """(level, motion.csv) of every finished run of the case under ``build_dir``, coarse to
-    fine: a level folder whose driver marked it finished (unfinished, diverged and moved-aside
-    ``<level>.old-<date>`` runs are left out)."""
-    runs = ((level, layout.run_dir(case_name, level, Path(build_dir))) for level in layout.LEVELS)
-    return [(level, run / "motion.csv") for level, run in runs
-            if (run / "motion.csv").is_file() and layout.is_finished(run)]
-
-
-def current_runs(case, build_dir: str | Path) -> tuple[list[tuple[str, Path]], list[str]]:
-    """:func:`cfd_runs` of ``case`` whose stamp is of the case's settings today (or that have
-    none: made by hand), and the levels of those made with other settings (its case file, a
-    --set or a default changed since): a run of other settings is not this case's CFD."""
-    from floatfoam.foam.driver import stamped_with
-
-    runs, foreign = [], []
-    for level, motion in cfd_runs(case.name, build_dir):
-        if stamped_with(case, level, motion.parent) is False:
-            foreign.append(level)
-        else:
-            runs.append((level, motion))
-    return runs, foreign
-
-
-def stale_note(case_name: str, names: list[str], study: bool = False) -> str:
-    """The report's line on runs (or the study made of them) left out because the runs were
-    made with other settings than the case's today."""
-    what = "The grid and time-step study is" if study else "CFD runs are"
-    again = f", then `floatfoam validate {case_name}`" if study else ""
-    return (f"{what} left out: {', '.join(names)} made with other settings than the case's "
-            "today (its case file, a --set, a default or the shared dictionaries changed "
-            f"since). Run again with the run's own options and --force (`floatfoam run "
-            f"{case_name} --level LEVEL`, with `--dt-divisor K` or `--morphing F` for a "
-            f"`-dtK` or `-morphF` run), which sets the old run aside{again}")
-
-
-def reference_entry(reference: dict, key: str) -> tuple[float, float | None, str] | None:
-    """(value, uncertainty, source) of a ``[reference]`` entry: a table or a bare number."""
-    entry = reference.get(key)
-    if entry is None:
-        return None
-    if isinstance(entry, dict):
-        value = entry.get("value")
-        if value is None:
-            raise InputError(f"reference.{key} has no 'value'; valid is a number or a table "
-                             "with value, uncertainty, source")
-        return float(value), _optional(entry.get("uncertainty")), str(entry.get("source", ""))
-    return float(entry), None, ""
-
-
-def _optional(value):
-    return None if value is None else float(value)
-
-
-def _row(case, dof, source, period=None, period_ci=None, zeta=None, zeta_ci=None, note=""):
-    return {"case": case, "dof": dof, "source": source, "period": period,
-            "period_ci": period_ci, "damping_ratio": zeta, "damping_ci": zeta_ci,
-            "period_rel_diff": None, "damping_rel_diff": None,
-            "period_rel_diff_measured": None, "damping_rel_diff_measured": None, "basis": "",
-            "note": note}
-
-
-def theory_equilibrium(theory: TheorySummary, dof: str) -> float | None:
-    """Equilibrium of a DoF in code units (z of G in m; heel, trim in radians)."""
-    eq = theory.equilibrium or {}
-    entry = dofs.dof(dof)
-    if eq.get(entry.equilibrium_key) is None:
-        return None
-    value = float(eq[entry.equilibrium_key])
-    return math.radians(value) if entry.is_angle else value
-
-
-def first_cycles(time, value, result: DecayResult, settled: float | None = None):
-    """The record's first cycles reduced by its zero crossings
-    (:func:`floatfoam.analysis.extrema.crossing_reduction`) about the level the body settles
-    at: ``settled`` (:func:`settled_level`) where the physics gives it, else the decay fit's
-    mean level at the end (five periods of CFD do not settle, so the record's tail cannot
-    say). Raises ValueError on too short a record."""
-    level = settled if settled is not None else float(result.fit.mean_level(time[-1]))
-    return crossing_reduction(time, value, level=level)
-
-
-#: settled_level: the largest rise of the tank's water, as a fraction of the release, for
-#: which the level is taken as known (0.1 % of the release moves the sphere's first period by
-#: ~0.08 %, within its grid study's U_num of 0.10 %)
-SETTLED_RISE = 1e-3
-
-
-def settled_level(case, dof: str, run: Path, theory: TheorySummary) -> float | None:
-    """Where a run's body settles in ``dof``, in code units, when the physics gives it: in
-    heave, the theory's equilibrium of G (the run's info.json), moved by the discrete body's
-    own equilibrium shift at the run's mesh level (it displaces a little less than the exact
-    body: :func:`floatfoam.meshing.volume_report.discrete_volume_report`, the wedge's revolved
-    meridian for a body of revolution) and raised with the tank's water, which the body
-    displaces more of at equilibrium than at its release (A_wp × release / the tank's free
-    surface).
-
-    None — the decay fit's level is used — for the angles, without the run's info or level,
-    when the discrete body's equilibrium cannot be solved, and where that rise exceeds
-    :data:`SETTLED_RISE` of the release: in a 2D slab (1–3 % of it) the displaced water
-    spreads along the tank for seconds while the first cycles pass, so the level they swing
-    about is not yet the final one (flume_section_heave: the theory's level with the rise, the
-    fit's and the tail's differ by up to 0.8 mm). In a wide tank (the
-    laboratory sphere's wedge: 0.06 %) it is exact to a few hundredths of a mm: there the first
-    period reduced as a basin reduces its records moves by 0.26 % per 0.1 mm of the level, the
-    decay fit's mean level lies 0.15–0.16 mm below this one, and fits of the record after its
-    first 1.5 s agree with it within 0.04 mm (cases/lab_sphere/README.md)."""
-    if dof != "heave":
-        return None
-    try:
-        info = json.loads((Path(run) / layout.MARKERS / "info.json").read_text())
-    except (OSError, ValueError):
-        return None
-    level = Path(run).name.split("-")[0]
-    if info.get("z_G_equilibrium") is None or level not in layout.LEVELS:
-        return None
-    from floatfoam.meshing.volume_report import discrete_volume_report
-    from floatfoam.tank import tank
-
-    box, area, release = tank(case), theory.waterplane_area, case.release["heave"]
-    free = {"wedge": math.pi * box.half_length**2,
-            "3d": 4 * box.half_length * box.half_width,
-            "3d-half": 4 * box.half_length * box.half_width}.get(
-        info.get("mesh"), 2 * box.half_length * (case.body.length or 1.0)) - area
-    rise = area * release / free
-    if abs(rise) > SETTLED_RISE * abs(release):
-        return None
-    try:
-        report = discrete_volume_report(case, level)
-    except (InputError, ValueError, RuntimeError):  # no discrete body to measure: the fit's
-        return None
-    if info.get("mesh") == "wedge":
-        report = report["meridian"]
-    return float(info["z_G_equilibrium"]) + report["equilibrium_shift"] + rise
-
-
 def potential_first_cycles(case, dof: str, theory: TheorySummary):
     """Cummins' potential-flow model with the body's exact restoring force (`floatfoam
     decay-model CASE --model cummins --nonlinear-restoring`), its record of DoF ``dof`` reduced
@@ -263,7 +123,7 @@ def _cfd_rows(case, dof, runs, theory, options) -> tuple[list[dict], list[CfdAna
         try:
             time, value, result = analyse_run(path, dof, **options)
         except InputError as err:
-            rows.append(_row(case.name, dof, source, note=f"analysis failed: {err}"))
+            rows.append(table_row(case.name, dof, source, note=f"analysis failed: {err}"))
             continue
         analyses.append(CfdAnalysis(level, dof, time, value, result,
                                     settled_level(case, dof, path.parent, theory)))
@@ -272,7 +132,7 @@ def _cfd_rows(case, dof, runs, theory, options) -> tuple[list[dict], list[CfdAna
         if eq_theory is not None:
             offset = (float(result.fit.mean_level(result.t_first)) - eq_theory) * scale
             note += f"; mean level {offset:+.3g} {unit} from the theory's equilibrium"
-        rows.append(_row(case.name, dof, source, s["period_mean"], s["period_ci95"],
+        rows.append(table_row(case.name, dof, source, s["period_mean"], s["period_ci95"],
                          s["damping_ratio"], s["damping_ratio_ci95"], note))
     return rows, analyses
 
@@ -314,27 +174,31 @@ def _theory_rows(case, dof, theory, potential):
     memoir = theory.memoir or {}
     if memoir.get(f"{dof}_period") is not None:
         label = memoir_label(memoir.get("source"))
-        rows.append(_row(case.name, dof, label, float(memoir[f"{dof}_period"])))
+        rows.append(table_row(case.name, dof, label, float(memoir[f"{dof}_period"])))
     printed = theory.memoir_printed or {}
     if printed.get(f"{dof}_period") is not None:
         errata = "; ".join(printed.get("errata") or [])
-        rows.append(_row(case.name, dof, "memoir as printed", float(printed[f"{dof}_period"]),
+        rows.append(table_row(case.name, dof, "memoir as printed", float(printed[f"{dof}_period"]),
                          note=f"errata: {errata}" if errata else "formulas right as printed"))
     period = theory.period(dof)
     note = "" if period is not None else f"no oscillation ({theory.dofs[dof].verdict or ''})"
-    rows.append(_row(case.name, dof, THEORY, period, note=note.strip()))
+    rows.append(table_row(case.name, dof, THEORY, period, note=note.strip()))
     flow = potential.dof(dof) if potential is not None else None
     if flow is not None and flow.period is not None:
         method = ", ".join(f"{value}{label}" for value, label in
                            ((potential.method, ""), (potential.panels, " panels")) if value)
-        rows.append(_row(case.name, dof, "potential flow", float(flow.period),
+        rows.append(table_row(case.name, dof, "potential flow", float(flow.period),
                          zeta=_optional(flow.damping_ratio), note=method))
     if flow is not None and flow.coupled_period is not None:
         partner = dofs.PARTNER[dof]
-        rows.append(_row(case.name, dof, f"potential flow, {partner} free",
+        rows.append(table_row(case.name, dof, f"potential flow, {partner} free",
                          float(flow.coupled_period), zeta=_optional(flow.coupled_damping_ratio),
                          note=f"a free body, as in the CFD ({partner} follows the {dof})"))
     return rows
+
+
+def _optional(value):
+    return None if value is None else float(value)
 
 
 def _range(entry) -> list[float] | None:
@@ -352,7 +216,7 @@ def _band_row(case, label, dof, study, keys) -> dict | None:
     ext = "; ".join(f"extrapolated {name} {b[2]:.5g}" for name, b in (("T", period),
                                                                        ("ζ", zeta))
                     if b is not None and b[2] is not None)
-    return _row(case.name, label, "CFD fine ± U_num", period and period[0], _range(period),
+    return table_row(case.name, label, "CFD fine ± U_num", period and period[0], _range(period),
                 zeta and zeta[0], _range(zeta),
                 "; ".join(filter(None, ("grid and time-step study (floatfoam validate)", ext))))
 
@@ -377,7 +241,7 @@ def _first_cycle_rows(case, dof, analyses, reference, study, model: Callable | N
         except (ImportError, InputError, ValueError, NotImplementedError, RuntimeError) as err:
             notes.append(f"potential flow, {label}: not computed ({err})")
         else:
-            rows.append(_row(case.name, label, FIRST_CYCLES_MODEL,
+            rows.append(table_row(case.name, label, FIRST_CYCLES_MODEL,
                              r.first_period, zeta=r.damping_ratio,
                              note=f"first trough {r.first_trough * scale:.4g} {unit}; "
                                   "decay-model --model cummins --nonlinear-restoring"))
@@ -385,10 +249,10 @@ def _first_cycle_rows(case, dof, analyses, reference, study, model: Callable | N
         try:
             r = first_cycles(run.time, run.value, run.result, run.settled)
         except ValueError as err:
-            rows.append(_row(case.name, label, f"CFD {run.level}",
+            rows.append(table_row(case.name, label, f"CFD {run.level}",
                              note=f"analysis failed: {err}"))
             continue
-        rows.append(_row(case.name, label, f"CFD {run.level}", r.first_period,
+        rows.append(table_row(case.name, label, f"CFD {run.level}", r.first_period,
                          zeta=r.damping_ratio,
                          note=f"first trough {r.first_trough * scale:.4g} {unit}"))
     band = _band_row(case, label, dof, study, ("first_period", "first_damping_ratio"))
@@ -396,7 +260,7 @@ def _first_cycle_rows(case, dof, analyses, reference, study, model: Callable | N
     notes = [f"first trough {trough[0] * scale:.4g} {unit}"
              + (f" ± {trough[1] * scale:.2g}" if trough[1] else "")] if trough else []
     sources = sorted({e[2] for e in (period, zeta, trough) if e is not None and e[2]})
-    rows.append(_row(case.name, label, "reference", period and period[0], _range(period),
+    rows.append(table_row(case.name, label, "reference", period and period[0], _range(period),
                      zeta and zeta[0], _range(zeta), "; ".join(notes + sources)))
     _relative_differences(rows, FIRST_CYCLES_MODEL)
     return rows
@@ -412,39 +276,8 @@ def _reference_row(case, dof, reference, window: float | None = None,
         return record_fit(case, dof, window, options)
 
     sources = sorted({e[2] for e in (period, zeta) if e is not None and e[2]})
-    return _row(case.name, dof, "reference", period[0] if period else None, _range(period),
+    return table_row(case.name, dof, "reference", period[0] if period else None, _range(period),
                 zeta[0] if zeta else None, _range(zeta), "; ".join(sources))
-
-
-def record_fit(case, dof: str, window: float | None = None, options: dict | None = None
-               ) -> dict | None:
-    """The case's measured record of ``dof`` (:mod:`floatfoam.analysis.measured`) through the
-    decay fit the CFD records go through (``options`` as theirs), from the release to
-    ``window`` s (the longest CFD record, so that both fit the same cycles; None: all of it),
-    as the reference row: its later periods and damping beside the first cycles'
-    reduction. The interval is the fit's 95 % one on this one record, not the spread between
-    repeated drops. None without a record; a row with the reason when the record cannot be
-    read or fitted."""
-    entry = (case.reference or {}).get(f"{dof}_record")
-    if entry is None:
-        return None
-    what = f"decay fit of the measured record ({entry.get('source', '')})"
-    try:
-        record = reference_record(case, dof)
-        result, span = fit_record(record, dof, window, **(options or {}))
-    except InputError as err:
-        return _row(case.name, dof, "reference", note=f"{what}: not fitted ({err})")
-    if window is None:
-        extent = f"all of it ({span:.3g} s; no CFD record to match)"
-    elif span < window - 1e-9:
-        extent = f"all of it ({span:.3g} s), shorter than the CFD's {window:.3g} s"
-    else:
-        extent = f"its first {span:.3g} s, as the CFD's record"
-    s = result.summary()
-    return _row(case.name, dof, "reference", s["period_mean"], s["period_ci95"],
-                s["damping_ratio"], s["damping_ratio_ci95"],
-                f"{what}, {extent}; {s['n_cycles']:.2g} cycles; 95 % interval of the fit "
-                "on this one record")
 
 
 def _relative_differences(rows: list[dict], model: str = MODEL) -> None:
@@ -488,17 +321,17 @@ def _model_row(case, dof: str, record: ModelRecord | str, options: dict,
     with the reason when the model was not computed or its series cannot be analysed.
     ``window``: the CFD record's span the model was computed over (None: no CFD record)."""
     if isinstance(record, str):
-        return _row(case.name, dof, MODEL, note=f"not computed: {record}")
+        return table_row(case.name, dof, MODEL, note=f"not computed: {record}")
     try:
         fit = fit_model(record, case, dof, **options)
     except InputError as err:
-        return _row(case.name, dof, MODEL, note=f"analysis failed: {err}; {record.note()}")
+        return table_row(case.name, dof, MODEL, note=f"analysis failed: {err}; {record.note()}")
     models[dof] = fit
     s = fit.result.summary()
     span = f"{float(fit.time[-1]):.3g} s"
     span = f"fitted over {span}, as the CFD's record" if window else \
         f"fitted over {span} (no CFD record to match)"
-    return _row(case.name, dof, MODEL, s["period_mean"], zeta=s["damping_ratio"],
+    return table_row(case.name, dof, MODEL, s["period_mean"], zeta=s["damping_ratio"],
                 note=f"T_n {s['natural_period']:.4g} s; {span}; {record.note()}")
 
 
@@ -562,67 +395,3 @@ def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = 
     return comparison
 
 
-def fmt(value, spec: str = ".4g") -> str:
-    """A number for a table; an em dash when missing."""
-    return "—" if value is None else format(value, spec)
-
-
-def _interval(ci) -> str:
-    return "" if ci is None else f"[{fmt(ci[0])}, {fmt(ci[1])}]"
-
-
-def _percent(value) -> str:
-    return "" if value is None else f"{100 * value:+.2f} %"
-
-
-TABLE_HEADER = ("DoF", "source", "period (s)", "period 95 % CI / ± uncertainty",
-                "Δ period vs model", "damping ratio ζ", "ζ 95 % CI / ± uncertainty",
-                "Δ ζ vs model", "Δ period vs measured", "Δ ζ vs measured", "note")
-MEASURED_COLUMNS = (8, 9)  # of TABLE_HEADER: left out of a table without a reference
-
-
-def comparison_table(rows: list[dict]) -> tuple[list[str], list[list[str]]]:
-    """Header and text cells of the comparison's rows, in the order of TABLE_HEADER, without
-    the Δ-vs-measured columns when no row has one (a case without a reference). The columns
-    name what their Δ is against; a row's note names it only where the model's Δ is the
-    linear theory's (the model not computed)."""
-    def note(r):
-        basis = r["basis"] if f"vs {THEORY}" in r["basis"] else ""
-        return "; ".join(x for x in (basis, r["note"]) if x)
-
-    cells = [[r["dof"], r["source"], fmt(r["period"]), _interval(r["period_ci"]),
-              _percent(r["period_rel_diff"]), fmt(r["damping_ratio"]),
-              _interval(r["damping_ci"]), _percent(r["damping_rel_diff"]),
-              _percent(r["period_rel_diff_measured"]), _percent(r["damping_rel_diff_measured"]),
-              note(r)] for r in rows]
-    keep = [i for i in range(len(TABLE_HEADER))
-            if i not in MEASURED_COLUMNS or any(row[i] for row in cells)]
-    return [TABLE_HEADER[i] for i in keep], [[row[i] for i in keep] for row in cells]
-
-
-def comparison_markdown(comparison: Comparison) -> str:
-    """The comparison as a Markdown table, with the notes below it."""
-    header, cells = comparison_table(comparison.rows)
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(cell.replace("|", "\\|") for cell in row) + " |"
-              for row in cells]
-    lines += [""] + [f"- {note}" for note in comparison.notes]
-    return "\n".join(lines) + "\n"
-
-
-def write_comparison(comparison: Comparison, out_dir: str | Path) -> tuple[Path, Path]:
-    """Write ``comparison.md`` and ``comparison.csv`` into ``out_dir``; return their paths."""
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    md_path, csv_path = out_dir / "comparison.md", out_dir / "comparison.csv"
-    md_path.write_text(f"# {comparison.case}: period and damping\n\n"
-                       + comparison_markdown(comparison))
-    with csv_path.open("w", newline="") as handle:
-        writer = csv.DictWriter(handle, fieldnames=CSV_FIELDS)
-        writer.writeheader()
-        for r in comparison.rows:
-            p_ci, z_ci = r["period_ci"] or (None, None), r["damping_ci"] or (None, None)
-            writer.writerow({**{k: r[k] for k in CSV_FIELDS if k in r},
-                             "period_lo": p_ci[0], "period_hi": p_ci[1],
-                             "damping_lo": z_ci[0], "damping_hi": z_ci[1]})
-    return md_path, csv_path

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam import dofs
+from floatfoam.analysis.comparison_table import table_row
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.errors import InputError
 from floatfoam.motion import file_unit
@@ -71,3 +72,52 @@ def fit_record(record: MeasuredRecord, dof: str, window: float | None = None,
     result = analyse_decay(time, offset / scale, units=file_unit(dof),
                            name=dofs.dof(dof).column, **options)
     return result, float(time[-1])
+
+
+def reference_entry(reference: dict, key: str) -> tuple[float, float | None, str] | None:
+    """(value, uncertainty, source) of a ``[reference]`` entry: a table or a bare number."""
+    entry = reference.get(key)
+    if entry is None:
+        return None
+    if isinstance(entry, dict):
+        value = entry.get("value")
+        if value is None:
+            raise InputError(f"reference.{key} has no 'value'; valid is a number or a table "
+                             "with value, uncertainty, source")
+        return float(value), _optional(entry.get("uncertainty")), str(entry.get("source", ""))
+    return float(entry), None, ""
+
+
+def _optional(value):
+    return None if value is None else float(value)
+
+
+def record_fit(case, dof: str, window: float | None = None, options: dict | None = None
+               ) -> dict | None:
+    """The case's measured record of ``dof`` (:mod:`floatfoam.analysis.measured`) through the
+    decay fit the CFD records go through (``options`` as theirs), from the release to
+    ``window`` s (the longest CFD record, so that both fit the same cycles; None: all of it),
+    as the reference row: its later periods and damping beside the first cycles'
+    reduction. The interval is the fit's 95 % one on this one record, not the spread between
+    repeated drops. None without a record; a row with the reason when the record cannot be
+    read or fitted."""
+    entry = (case.reference or {}).get(f"{dof}_record")
+    if entry is None:
+        return None
+    what = f"decay fit of the measured record ({entry.get('source', '')})"
+    try:
+        record = reference_record(case, dof)
+        result, span = fit_record(record, dof, window, **(options or {}))
+    except InputError as err:
+        return table_row(case.name, dof, "reference", note=f"{what}: not fitted ({err})")
+    if window is None:
+        extent = f"all of it ({span:.3g} s; no CFD record to match)"
+    elif span < window - 1e-9:
+        extent = f"all of it ({span:.3g} s), shorter than the CFD's {window:.3g} s"
+    else:
+        extent = f"its first {span:.3g} s, as the CFD's record"
+    s = result.summary()
+    return table_row(case.name, dof, "reference", s["period_mean"], s["period_ci95"],
+                s["damping_ratio"], s["damping_ratio_ci95"],
+                f"{what}, {extent}; {s['n_cycles']:.2g} cycles; 95 % interval of the fit "
+                "on this one record")

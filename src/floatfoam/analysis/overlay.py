@@ -11,10 +11,10 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam import dofs, layout
-from floatfoam.analysis.compare import reference_entry, theory_equilibrium
 from floatfoam.analysis.cummins import ModelFit, cummins_model, fit_model
-from floatfoam.analysis.measured import reference_record
+from floatfoam.analysis.measured import reference_entry, reference_record
 from floatfoam.analysis.plots import Overlay
+from floatfoam.analysis.settled import theory_equilibrium
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
 from floatfoam.motion import file_unit

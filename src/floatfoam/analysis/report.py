@@ -34,15 +34,8 @@ from pathlib import Path
 
 import floatfoam
 from floatfoam import dofs, layout
-from floatfoam.analysis.compare import (
-    Comparison,
-    compare_case,
-    comparison_table,
-    fmt,
-    memoir_label,
-    potential_flow,
-    write_comparison,
-)
+from floatfoam.analysis.compare import Comparison, compare_case, memoir_label, potential_flow
+from floatfoam.analysis.comparison_table import comparison_table, fmt, write_comparison
 from floatfoam.analysis.document import Document
 from floatfoam.analysis.overlay import decay_overlay
 from floatfoam.analysis.plots import plot_decay

@@ -9,7 +9,7 @@ damping ratio of the whole record's fit, and the first cycles as a basin reduces
 trough's time between zero crossings, ζ of the first six extrema and the first trough —, each
 beside the case's ``[reference]`` measurement of it where there is one; the whole record's T_d
 and ζ beside its measured record's decay fit over the same span where the reference gives only
-the record, :func:`floatfoam.analysis.compare.record_fit`) it gives
+the record, :func:`floatfoam.analysis.measured.record_fit`) it gives
 
 * the study of Celik et al. (2008) on coarse, medium, fine (:mod:`floatfoam.analysis.gci`:
   observed order, Richardson extrapolation, GCI_fine — or the word for how it fails to
@@ -58,14 +58,9 @@ from pathlib import Path
 
 from floatfoam import layout
 from floatfoam.analysis import gci
-from floatfoam.analysis.compare import (
-    analyse_run,
-    excited_dofs,
-    first_cycles,
-    record_fit,
-    reference_entry,
-    settled_level,
-)
+from floatfoam.analysis.compare import analyse_run, excited_dofs
+from floatfoam.analysis.measured import record_fit, reference_entry
+from floatfoam.analysis.settled import first_cycles, settled_level
 from floatfoam.analysis.uncertainty import STUDY_FILE
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.theory import theory_summary
@@ -403,7 +398,7 @@ def measured(case, dof: str, window: float | None = None) -> dict:
     """The case's ``[reference]`` values of the study's quantities, ``<dof>_<key>`` (code
     units): key → [value, uncertainty or None, source]. Without a period and damping ratio
     there, those of its measured record's decay fit over ``window`` s, the runs' record
-    (:func:`~floatfoam.analysis.compare.record_fit`; the uncertainty is half the fit's 95 %
+    (:func:`~floatfoam.analysis.measured.record_fit`; the uncertainty is half the fit's 95 %
     interval)."""
     out = {}
     for key, _, _ in QUANTITIES:
