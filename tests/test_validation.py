@@ -23,15 +23,14 @@ from floatfoam.analysis.overlay import decay_overlay
 from floatfoam.analysis.plots import free_decay_curve
 from floatfoam.analysis.report import Sources, build_report
 from floatfoam.analysis.settled import settled_level
+from floatfoam.analysis.study_tables import _convergence, write_study
 from floatfoam.analysis.validation import (
     DEFAULT_MORPHING,
-    _convergence,
     measured,
     numerical_uncertainty,
     plan,
     study_morphing,
     validate_case,
-    write_study,
 )
 from floatfoam.case import load_case
 from floatfoam.errors import InputError
@@ -807,7 +806,7 @@ def test_the_mesh_motion_runs_factor(tmp_path):
 def test_a_study_written_before_a_quantity_joined_it_still_reports(tmp_path):
     """validation.json from before the first cycles' ζ and trough, the measured column and the
     morphing run joined the study: its tables say so instead of failing."""
-    from floatfoam.analysis.validation import morphing_rows, study_markdown, study_tables
+    from floatfoam.analysis.study_tables import morphing_rows, study_markdown, study_tables
 
     old = {"case": "cylinder_heave", "runs": ["coarse"], "time_step_level": "medium",
            "dofs": {"heave": {"runs": {"coarse": {"cells": 11280, "dimension": 2, "divisor": 1,
@@ -862,7 +861,7 @@ def test_the_level_a_3d_heave_record_settles_at(tmp_path):
 def test_time_study_takes_the_time_schemes_order(scheme, order):
     """The time-step GCI is Roache's two-grid one at the time scheme's formal order: Euler's 1,
     Crank–Nicolson's 2 only when it is not blended with Euler (ψ = 1)."""
-    from floatfoam.analysis.validation import time_order
+    from floatfoam.analysis.orders import time_order
 
     case = load_case("box_bilge", [f'run.time_scheme="{scheme}"'] if scheme else [])
     assert time_order(case) == order
@@ -871,7 +870,8 @@ def test_time_study_takes_the_time_schemes_order(scheme, order):
 def test_time_gci_takes_the_schemes_order():
     """Roache's GCI of the level's own step, F_s ε r^p/(r^p − 1): 6ε at p = 1, 4ε at p = 2 for
     r = 2 (ε = 1 % here), and the study's foot names the order."""
-    from floatfoam.analysis.validation import RunValues, method, time_study
+    from floatfoam.analysis.study_tables import method
+    from floatfoam.analysis.validation import RunValues, time_study
 
     runs = {"medium": RunValues("medium", 100, 2, values={"period": 1.0}),
             "medium-dt2": RunValues("medium-dt2", 100, 2, divisor=2, values={"period": 0.99})}
@@ -887,7 +887,7 @@ def test_time_order_is_read_from_the_schemes(tmp_path, default, order):
     """The time-step GCI's order follows the fvSchemes the runs take (its ddtSchemes default),
     not a copy of it: the shared file's Euler gives 1, a file changed to backward 2; a scheme
     of no known order is refused, naming the file."""
-    from floatfoam.analysis.validation import time_order
+    from floatfoam.analysis.orders import time_order
     from floatfoam.layout import COMMON_DIR
 
     case = load_case("box_bilge")

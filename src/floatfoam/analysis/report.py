@@ -342,11 +342,11 @@ def _validation_section(doc: Document, case_name: str, study: dict | None, build
                         out_dir: Path) -> None:
     """The grid and time-step study of ``floatfoam validate``, when it has been run with the
     case's settings of today (the comparison's, which says in its notes when it was not)."""
-    from floatfoam.analysis.validation import (
+    from floatfoam.analysis.orders import TIME_ORDER
+    from floatfoam.analysis.study_tables import (
         GCI_HEADER,
         MORPHING_HEADER,
         RUNS_HEADER,
-        TIME_ORDER,
         method,
         morphing_rows,
         motion_heading,
@@ -377,7 +377,7 @@ def _verification_summary(doc: Document, studies: list[dict]) -> None:
     """One line per case and DoF that ``floatfoam validate`` has studied with the case's
     settings of today: its damped period and damping ratio at the fine level with their
     numerical uncertainty."""
-    from floatfoam.analysis.validation import SUMMARY_HEADER, summary_row
+    from floatfoam.analysis.study_tables import SUMMARY_HEADER, summary_row
 
     rows = [summary_row(study, dof) for study in studies for dof in study.get("dofs", {})]
     if not rows:

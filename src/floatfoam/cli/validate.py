@@ -54,7 +54,8 @@ def run(args) -> int:
     study of what finished is written), 2 bad input, 75 another run holds a run directory,
     128 + signal when interrupted (the same command resumes)."""
     from floatfoam import layout
-    from floatfoam.analysis.validation import plan, study_markdown, study_morphing, write_study
+    from floatfoam.analysis.study_tables import study_markdown, write_study
+    from floatfoam.analysis.validation import plan, study_morphing
     from floatfoam.case import load_case
     from floatfoam.cli.run import EXIT_LOCKED
     from floatfoam.foam.driver import check_ranks
