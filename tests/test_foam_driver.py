@@ -14,7 +14,7 @@ from floatfoam import layout
 from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.errors import InputError
-from floatfoam.foam import driver, runner, timedirs
+from floatfoam.foam import driver, runner, stamps, timedirs
 from floatfoam.foam.logwatch import LogWatcher, Step
 from floatfoam.foam.motionlog import MotionWriter
 from floatfoam.foam.paraview import RECONSTRUCT
@@ -226,11 +226,11 @@ def test_the_stamp_leaves_out_how_far_the_run_goes():
     """run.end_time says how far a run goes, not what it computes: out of the stamp (the case
     file's 3.2 s, or any other); run.write_interval sets the written times the adjustable time
     step lands on: in it."""
-    digest = driver.settings_digest(heave(0.1), "coarse")
-    assert driver.settings_digest(heave(0.2), "coarse") == digest
+    digest = stamps.settings_digest(heave(0.1), "coarse")
+    assert stamps.settings_digest(heave(0.2), "coarse") == digest
     own = load_case("cylinder_heave", [SOLVER, "run.write_interval=0.05"])  # 3.2 s
-    assert driver.settings_digest(own, "coarse") == digest
-    assert driver.settings_digest(heave(0.2, 0.1), "coarse") != digest
+    assert stamps.settings_digest(own, "coarse") == digest
+    assert stamps.settings_digest(heave(0.2, 0.1), "coarse") != digest
 
 
 def test_a_finished_run_continues_to_a_later_end_time(tmp_path, capsys):

@@ -34,7 +34,8 @@ from floatfoam.analysis.validation import (
 )
 from floatfoam.case import load_case
 from floatfoam.errors import InputError
-from floatfoam.foam.driver import prepare, settings_digest, smaller_steps
+from floatfoam.foam.driver import prepare, smaller_steps
+from floatfoam.foam.stamps import settings_digest
 from floatfoam.hydrostatics.theory import theory_summary
 from floatfoam.motion import file_unit, write_motion
 
@@ -303,7 +304,7 @@ def test_scaled_morphing_is_another_run(name, overrides):
     """--morphing 1.5: both distances × 1.5 when the case sets them, ÷ 1.5 when they are the
     defaults, which reach as far as the tank allows; in a run of its own settings."""
     from floatfoam.foam import domain
-    from floatfoam.foam.driver import morphing_variant, scaled_morphing
+    from floatfoam.foam.morphing import morphing_variant, scaled_morphing
     from floatfoam.foam.render import release_state
     from floatfoam.hydrostatics.theory import equilibrium
 
@@ -331,7 +332,7 @@ def test_scaled_morphing_of_the_laplacian_spreads_its_diffusivity():
     a factor < 1 is refused (no narrower Laplacian is offered), and so is a wider one of a case
     already at 1/d; the distances ignore the setting."""
     from floatfoam.foam import domain
-    from floatfoam.foam.driver import morphing_variant, scaled_morphing
+    from floatfoam.foam.morphing import morphing_variant, scaled_morphing
     from floatfoam.foam.render import release_state
     from floatfoam.hydrostatics.theory import equilibrium
 

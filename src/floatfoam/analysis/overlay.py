@@ -77,7 +77,7 @@ def run_overlay(run: Path, dof: str, duration: float, **options) -> tuple[Overla
     the case's today (its model would be another body's); the overlay without the model, and
     why, where the model cannot be computed."""
     from floatfoam.case import load_case
-    from floatfoam.foam.driver import stamped_with
+    from floatfoam.foam.stamps import stamped_with
     from floatfoam.hydrostatics.theory import theory_summary
 
     folder = _case_folder(run)

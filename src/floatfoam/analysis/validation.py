@@ -29,7 +29,7 @@ the record, :func:`floatfoam.analysis.measured.record_fit`) it gives
   level itself;
 * the mesh-motion study: the coarse level once more with its mesh motion spread wider
   (``--morphing F``, :data:`DEFAULT_MORPHING` by default;
-  :func:`floatfoam.foam.driver.scaled_morphing`): the six-DoF solver's distances times F, or
+  :func:`floatfoam.foam.morphing.scaled_morphing`): the six-DoF solver's distances times F, or
   the Laplacian's diffusivity 1/d instead of 1/d². The mesh motion is the same on every level,
   so neither GCI sees it; on the laboratory sphere the distances moved the damping more than
   the levels did. U_motion is the whole relative change of each quantity between the two
@@ -93,7 +93,7 @@ def plan(time_level: str = TIME_STEP_LEVEL,
         raise InputError(f"--time-level {time_level!r} is not a level whose time steps a "
                          "study halves; valid: " + ", ".join(TIME_STEP_LEVELS))
     if morphing is not None:
-        from floatfoam.foam.driver import check_morphing
+        from floatfoam.foam.morphing import check_morphing
 
         check_morphing(morphing, study=True)
     runs = (("coarse", 1, 1.0), ("medium", 1, 1.0), ("fine", 1, 1.0),
@@ -117,7 +117,7 @@ class RunValues:
     cells: int | None
     dimension: int
     divisor: int = 1  # of the level's time steps
-    morphing: float = 1.0  # factor of the mesh motion (driver.scaled_morphing)
+    morphing: float = 1.0  # factor of the mesh motion (morphing.scaled_morphing)
     values: dict = field(default_factory=dict)  # key of QUANTITIES → value (None: failed)
     note: str = ""
     span: float | None = None  # s: the record's length from the release
@@ -128,7 +128,7 @@ def study_runs(case, build: Path, time_level: str = TIME_STEP_LEVEL,
     """(name, time-step divisor, morphing factor, run directory) of the study's runs that are
     finished. Raises InputError when one was run with other settings than ``case``'s (its case
     file and ``--set``): the study, its time order among them, is of one set of settings."""
-    from floatfoam.foam.driver import stamped_with
+    from floatfoam.foam.stamps import stamped_with
 
     out = []
     for level, divisor, factor in plan(time_level, morphing):
@@ -290,7 +290,7 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
     """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict.
     ``morphing``: the factor of its mesh-motion run (:func:`study_morphing`), None for a study
     without one."""
-    from floatfoam.foam.driver import stamp_of
+    from floatfoam.foam.stamps import stamp_of
 
     build = Path(build or layout.build_dir())
     found = study_runs(case, build, time_level, morphing)
@@ -334,10 +334,10 @@ def mesh_motion_record(case, found, morphing: float | None) -> dict:
     the case on its runs' mesh), and what its mesh-motion run varied: ``motion``
     ("laplacian", "distances"; None without a run's record), ``diffusivity`` (the
     Laplacian's, in words), ``factor``, ``run`` (its folder), ``variant`` (in words,
-    :func:`floatfoam.foam.driver.morphing_variant`), ``studied`` (its run finished: U_motion
+    :func:`floatfoam.foam.morphing.morphing_variant`), ``studied`` (its run finished: U_motion
     joins U_num) and ``note``. ``found``: :func:`study_runs`."""
     from floatfoam.foam.domain import mesh_motion
-    from floatfoam.foam.driver import morphing_variant
+    from floatfoam.foam.morphing import morphing_variant
     from floatfoam.settings import MOTION_DIFFUSIVITIES
 
     kinds = [_info(run).get("mesh") for _, _, factor, run in found if factor == 1]

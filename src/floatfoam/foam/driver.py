@@ -21,22 +21,22 @@ written.
 
 from __future__ import annotations
 
-import hashlib
 import json
-import math
 import shutil
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from floatfoam import layout, settings
+from floatfoam import layout
 from floatfoam.case import Case
 from floatfoam.errors import InputError
 from floatfoam.foam import domain, extension, paraview, runner
+from floatfoam.foam.morphing import check_morphing, scaled_morphing
 from floatfoam.foam.motionlog import rebuild_motion
 from floatfoam.foam.ranks import check_free_cores, check_ranks
 from floatfoam.foam.render import end_time_of, release_state, render
 from floatfoam.foam.runlock import RunLock, lock_path
+from floatfoam.foam.stamps import settings_digest, solver_path, stamped_with
 from floatfoam.foam.timedirs import latest_time, set_aside_incomplete
 from floatfoam.hydrostatics.theory import Equilibrium
 from floatfoam.scratch import scratch_dir
@@ -49,109 +49,6 @@ class RunResult:
     info: dict
     resumed: bool
     already_finished: bool = False
-
-
-def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float = 1.0) -> str:
-    """Hash of what a run depends on: the case file, the values it resolves to with the
-    defaults (a changed default makes every run made at the former one another run's) and the
-    mesh motion they resolve to (:func:`_resolved_motion`), the level, the time-step divisor
-    and morphing factor of a study's run, the shared dictionaries and the solver binary. Not
-    the case's words ([case] title, description, and the name of the case it extends: its
-    tables are in), nor its [reference] measurements: adding a measurement must not make a
-    finished run look foreign; nor run.end_time, which says only how far the run goes (its
-    own is in its info.json: :mod:`floatfoam.foam.extension`)."""
-    stamp = settings.stamped(case.settings)
-    raw = {table: values for table, values in case.raw.items() if table != "reference"}
-    raw["case"] = {k: v for k, v in raw.get("case", {}).items()
-                   if k not in ("title", "description", "extends")}
-    for table in settings.TABLES:  # a key the stamp leaves out (0 prism layers, written out)
-        if isinstance(raw.get(table), dict):  # is left out of the file's copy too
-            kept = _stamped_keys(raw[table], stamp.get(table, {}))
-            if kept or not raw[table]:
-                raw[table] = kept
-            else:  # emptied by it: as if never written
-                del raw[table]
-    resolved = {"settings": stamp, "release": case.release,
-                "mass": case.mass, "cog": case.cog, "gyradius": case.gyradius, "rho": case.rho,
-                "nu": case.nu, "g": case.g, "depth": case.depth, "rho_air": case.rho_air,
-                "nu_air": case.nu_air, "mesh_motion": _resolved_motion(case, level)}
-    run = {"case": raw, "resolved": resolved, "level": level, "divisor": divisor,
-           "morphing": morphing}
-    digest = hashlib.sha256(json.dumps(run, sort_keys=True, default=_plain).encode())
-    for path in sorted(layout.COMMON_DIR.rglob("*")):
-        if path.is_file():
-            digest.update(path.read_bytes())
-    digest.update(str(solver_path(case, check=False)).encode())
-    return digest.hexdigest()[:16]
-
-
-def _resolved_motion(case: Case, level: str) -> list | None:
-    """How the run's mesh follows the body once "auto" and the distances' defaults are
-    resolved (:func:`floatfoam.foam.domain.mesh_motion`, ``_distances``): ["laplacian"], or
-    ["distances", inner, outer]; a rule that resolves them otherwise makes the runs made
-    before it foreign. None when the case has no mesh plan (its input is refused there)."""
-    from floatfoam.hydrostatics.theory import equilibrium
-
-    try:
-        mesh = domain.plan(case, level, release_state(case, equilibrium(case))["pose"])
-    except InputError:
-        return None
-    if mesh.motion != "distances":
-        return [mesh.motion]
-    return [mesh.motion, float(f"{mesh.inner:.9g}"), float(f"{mesh.outer:.9g}")]
-
-
-def _stamped_keys(values: dict, stamped: dict) -> dict:
-    """A settings table of the case file with only the keys its stamp keeps (nested tables
-    alike; one emptied by that is left out, one written empty is kept)."""
-    kept = {}
-    for key, value in values.items():
-        if key not in stamped:
-            continue
-        if isinstance(value, dict):
-            inner = _stamped_keys(value, stamped[key])
-            if value and not inner:
-                continue
-            value = inner
-        kept[key] = value
-    return kept
-
-
-def _plain(value):
-    """JSON for the digest: arrays as lists (their repr would wrap and elide), else str."""
-    return value.tolist() if hasattr(value, "tolist") else str(value)
-
-
-def stamp_of(run_dir: Path) -> str | None:
-    """The settings digest a run directory was stamped with (None without a stamp)."""
-    stamp = run_dir / layout.MARKERS / "settings"
-    words = stamp.read_text().split() if stamp.exists() else []
-    return words[0] if words else None
-
-
-def stamped_with(case: Case, level: str, run_dir: Path, divisor: int = 1,
-                 morphing: float = 1.0) -> bool | None:
-    """Whether the run directory's settings stamp is that of ``case`` run at ``level`` with
-    its time steps divided by ``divisor`` and its mesh motion scaled by ``morphing`` (the
-    case as the command gives it: a study's run stamps its own digest); None when it has no
-    stamp (the driver writes it before anything else: a folder without one was not made by a
-    run)."""
-    if not (run_dir / layout.MARKERS / "settings").exists():
-        return None
-    digest = stamp_of(run_dir)
-    return digest is not None and digest == settings_digest(case, level, divisor=divisor,
-                                                            morphing=morphing)
-
-
-def solver_path(case: Case, check: bool = True) -> Path:
-    """The interFoam to run: floatfoam's rebuilt one unless [run] solver names another.
-    ``check``: refuse one that does not exist (a digest, which only names it, does not)."""
-    path = Path(case.settings.run.solver or layout.SOLVER)
-    path = path if path.is_absolute() else layout.ROOT / path
-    if check and not path.is_file():
-        raise InputError(f"run.solver = {str(path)!r} does not exist; run `make setup` to build "
-                         "floatfoam's interFoam (scripts/build_solver.sh)")
-    return path
 
 
 def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None,
@@ -338,93 +235,6 @@ def smaller_steps(case: Case, divisor: int) -> Case:
               "max_alpha_courant": run.max_alpha_courant}
     return with_overrides(case, [f"run.{key}={value / divisor!r}"
                                  for key, value in limits.items() if value is not None])
-
-
-def check_morphing(factor: float, *, study: bool = False) -> None:
-    """A morphing factor must be > 0 and name its run folder exactly (at most 6 significant
-    digits: ``<level>-morph<F>``); a study's must not be 1, which is the coarse run itself."""
-    valid = (not isinstance(factor, bool) and isinstance(factor, (int, float))
-             and math.isfinite(factor) and factor > 0 and float(f"{factor:g}") == factor
-             and not (study and factor == 1))
-    if not valid:
-        raise InputError(f"--morphing {factor!r}: valid is a factor > 0 of at most 6 "
-                         "significant digits" + (" other than 1 (--no-morphing: no mesh-motion "
-                                                 "run)" if study else "") +
-                         " (1.5: both morphing distances one and a half times the case's, or "
-                         "the Laplacian's diffusivity 1/d instead of 1/d²)")
-
-
-def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool = True) -> Case:
-    """The case with its mesh motion (:func:`floatfoam.foam.domain.mesh_motion`) spread wider
-    or narrower by ``factor`` > 0 (:func:`morphing_variant` says how, in words):
-
-    * the six-DoF solver's distances — the mesh moves rigidly with the body within
-      run.inner_distance and is fixed beyond run.outer_distance, or their defaults from the
-      body and the tank (:mod:`floatfoam.foam.domain`) — both multiplied by ``factor``, or
-      divided by it where the defaults already reach as far as the tank allows
-      (:func:`distance_factor`);
-    * the Laplacian, for ``factor`` > 1: run.motion_diffusivity "linear", whose 1/d spreads
-      the deformation further from the body than the default 1/d². A factor < 1, or a case
-      already at 1/d, is refused: no narrower nor wider Laplacian is offered.
-
-    A study of the mesh motion, which a study of mesh levels cannot see since the motion is
-    the same on every level: the damping ratio of the laboratory sphere's 0.3 D drop rose from
-    0.066 to 0.109 as the distances were widened from 0.09 and 0.48 m to 0.2 and 1.2 m
-    (docs/studies/cases/lab_sphere.md)."""
-    check_morphing(factor)
-    if factor == 1:
-        return case
-    from floatfoam.case import with_overrides
-
-    mesh = domain.plan(case, level, pose, local=local)
-    if mesh.motion == "distances":
-        scale = distance_factor(case, factor)
-        return with_overrides(case, [f"run.inner_distance={mesh.inner * scale!r}",
-                                     f"run.outer_distance={mesh.outer * scale!r}"])
-    wider = _wider_diffusivity(case, factor)
-    return with_overrides(case, [f'run.motion_diffusivity="{wider}"'])
-
-
-def distance_factor(case: Case, factor: float) -> float:
-    """What the six-DoF distances are multiplied by in a run of mesh-motion factor ``factor``:
-    ``factor`` itself, but 1 / ``factor`` for a widening (``factor`` > 1) of the defaults,
-    whose outer distance already reaches 0.9 × the room to the tank's nearest held wall
-    (:func:`floatfoam.foam.domain._distances`): widened, the zone would squeeze the walls'
-    first cells; narrowed as much, it says as much of the distances' effect."""
-    return 1.0 / factor if factor > 1 and case.settings.run.outer_distance is None else factor
-
-
-#: the diffusivity a Laplacian run of a mesh-motion study takes (:func:`scaled_morphing`)
-WIDER_DIFFUSIVITY = {"quadratic": "linear"}
-
-
-def _wider_diffusivity(case: Case, factor: float) -> str:
-    """run.motion_diffusivity of the Laplacian spread wider (``factor`` > 1); InputError for
-    ``factor`` < 1 or a case whose diffusivity has none wider."""
-    now = case.settings.run.motion_diffusivity
-    if factor < 1:
-        raise InputError(f"--morphing {factor:g} narrows the mesh motion; this run's mesh "
-                         "follows the body by the Laplacian, for which no diffusivity narrower "
-                         "than 1/d² is offered: valid is a factor > 1 (diffusivity 1/d), or "
-                         "--set run.mesh_motion='\"distances\"'")
-    if now not in WIDER_DIFFUSIVITY:
-        raise InputError(f"--morphing {factor:g} spreads the Laplacian's deformation wider; "
-                         f"run.motion_diffusivity = {now!r} (1/d) is the widest offered: valid "
-                         "is --no-morphing, or --set run.motion_diffusivity='\"quadratic\"'")
-    return WIDER_DIFFUSIVITY[now]
-
-
-def morphing_variant(case: Case, motion: str, factor: float) -> str:
-    """What :func:`scaled_morphing` changes in a run whose mesh follows the body by
-    ``motion`` ("laplacian" or "distances"), in words: "distances × 1.5", "diffusivity 1/d
-    instead of 1/d²"."""
-    if motion == "distances":
-        scale = distance_factor(case, factor)
-        return f"distances × {factor:g}" if scale == factor else \
-            f"distances ÷ {factor:g} (their defaults reach as far as the tank allows)"
-    now = case.settings.run.motion_diffusivity
-    words = settings.MOTION_DIFFUSIVITIES
-    return f"diffusivity {words[WIDER_DIFFUSIVITY.get(now, now)]} instead of {words[now]}"
 
 
 def _locked_run(case, level, np_, force, build_dir, hostfile, state, mesh, lock,

@@ -1,7 +1,7 @@
 """A run asked for another end time than the one it was made to (``--set run.end_time``).
 
 run.end_time says only how far a run goes: a run's stamp
-(:func:`floatfoam.foam.driver.settings_digest`) leaves it out, and the run's own end time is
+(:func:`floatfoam.foam.stamps.settings_digest`) leaves it out, and the run's own end time is
 in its ``.floatfoam/info.json``. A run folder of the command's settings asked for another end
 time
 

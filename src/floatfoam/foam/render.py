@@ -120,7 +120,7 @@ def render(case: Case, level: str, run_dir: Path, state: dict, mesh: RunMesh, *,
 # pcorr, the flux correction after each of a step's three mesh motions, by GAMG on gmsh's
 # unstructured sections and whole tanks; by the shared fvSolution's PCG (DIC) elsewhere. Same
 # tolerance; measured on the coarse levels, 2 ranks, the same steps, relaxation 0.7: solver clock
-# elliptic_cylinder_capsize 0.6 s 19 → 14 s, box_bilge 0.8 s 16 → 13 s, stl_pontoon 0.03 s
+# elliptic_cylinder_capsize 0.6 s 19 → 14 s, box_bilge 0.8 s 16 → 13 s, stl_pontoon (whole) 0.03 s
 # 40 → 35 s; the box's motion equal to the PCG run's within 3e-8 of its swing. Slower or
 # no faster on the O-grid's hexes (cylinder_heave 1 s: 29 → 30 s), the small wedges (sphere
 # 1 s: 16 → 19 s) and the half tanks (ellipsoid_roll 0.08 s: 18 → 19 s).

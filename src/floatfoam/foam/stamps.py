@@ -1,0 +1,119 @@
+"""What a run is of: the interFoam it runs (:func:`solver_path`), the digest of everything its
+result depends on (:func:`settings_digest`), and the stamp in its folder that records it
+(:func:`stamp_of`, :func:`stamped_with`). The driver writes the stamp before anything else; the
+analysis reads it to leave out runs of other settings than the case's today."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from pathlib import Path
+
+from floatfoam import layout, settings
+from floatfoam.case import Case
+from floatfoam.errors import InputError
+from floatfoam.foam import domain
+from floatfoam.foam.render import release_state
+
+
+def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float = 1.0) -> str:
+    """Hash of what a run depends on: the case file, the values it resolves to with the
+    defaults (a changed default makes every run made at the former one another run's) and the
+    mesh motion they resolve to (:func:`_resolved_motion`), the level, the time-step divisor
+    and morphing factor of a study's run, the shared dictionaries and the solver binary. Not
+    the case's words ([case] title, description, and the name of the case it extends: its
+    tables are in), nor its [reference] measurements: adding a measurement must not make a
+    finished run look foreign; nor run.end_time, which says only how far the run goes (its
+    own is in its info.json: :mod:`floatfoam.foam.extension`)."""
+    stamp = settings.stamped(case.settings)
+    raw = {table: values for table, values in case.raw.items() if table != "reference"}
+    raw["case"] = {k: v for k, v in raw.get("case", {}).items()
+                   if k not in ("title", "description", "extends")}
+    for table in settings.TABLES:  # a key the stamp leaves out (0 prism layers, written out)
+        if isinstance(raw.get(table), dict):  # is left out of the file's copy too
+            kept = _stamped_keys(raw[table], stamp.get(table, {}))
+            if kept or not raw[table]:
+                raw[table] = kept
+            else:  # emptied by it: as if never written
+                del raw[table]
+    resolved = {"settings": stamp, "release": case.release,
+                "mass": case.mass, "cog": case.cog, "gyradius": case.gyradius, "rho": case.rho,
+                "nu": case.nu, "g": case.g, "depth": case.depth, "rho_air": case.rho_air,
+                "nu_air": case.nu_air, "mesh_motion": _resolved_motion(case, level)}
+    run = {"case": raw, "resolved": resolved, "level": level, "divisor": divisor,
+           "morphing": morphing}
+    digest = hashlib.sha256(json.dumps(run, sort_keys=True, default=_plain).encode())
+    for path in sorted(layout.COMMON_DIR.rglob("*")):
+        if path.is_file():
+            digest.update(path.read_bytes())
+    digest.update(str(solver_path(case, check=False)).encode())
+    return digest.hexdigest()[:16]
+
+
+def _resolved_motion(case: Case, level: str) -> list | None:
+    """How the run's mesh follows the body once "auto" and the distances' defaults are
+    resolved (:func:`floatfoam.foam.domain.mesh_motion`, ``_distances``): ["laplacian"], or
+    ["distances", inner, outer]; a rule that resolves them otherwise makes the runs made
+    before it foreign. None when the case has no mesh plan (its input is refused there)."""
+    from floatfoam.hydrostatics.theory import equilibrium
+
+    try:
+        mesh = domain.plan(case, level, release_state(case, equilibrium(case))["pose"])
+    except InputError:
+        return None
+    if mesh.motion != "distances":
+        return [mesh.motion]
+    return [mesh.motion, float(f"{mesh.inner:.9g}"), float(f"{mesh.outer:.9g}")]
+
+
+def _stamped_keys(values: dict, stamped: dict) -> dict:
+    """A settings table of the case file with only the keys its stamp keeps (nested tables
+    alike; one emptied by that is left out, one written empty is kept)."""
+    kept = {}
+    for key, value in values.items():
+        if key not in stamped:
+            continue
+        if isinstance(value, dict):
+            inner = _stamped_keys(value, stamped[key])
+            if value and not inner:
+                continue
+            value = inner
+        kept[key] = value
+    return kept
+
+
+def _plain(value):
+    """JSON for the digest: arrays as lists (their repr would wrap and elide), else str."""
+    return value.tolist() if hasattr(value, "tolist") else str(value)
+
+
+def stamp_of(run_dir: Path) -> str | None:
+    """The settings digest a run directory was stamped with (None without a stamp)."""
+    stamp = run_dir / layout.MARKERS / "settings"
+    words = stamp.read_text().split() if stamp.exists() else []
+    return words[0] if words else None
+
+
+def stamped_with(case: Case, level: str, run_dir: Path, divisor: int = 1,
+                 morphing: float = 1.0) -> bool | None:
+    """Whether the run directory's settings stamp is that of ``case`` run at ``level`` with
+    its time steps divided by ``divisor`` and its mesh motion scaled by ``morphing`` (the
+    case as the command gives it: a study's run stamps its own digest); None when it has no
+    stamp (the driver writes it before anything else: a folder without one was not made by a
+    run)."""
+    if not (run_dir / layout.MARKERS / "settings").exists():
+        return None
+    digest = stamp_of(run_dir)
+    return digest is not None and digest == settings_digest(case, level, divisor=divisor,
+                                                            morphing=morphing)
+
+
+def solver_path(case: Case, check: bool = True) -> Path:
+    """The interFoam to run: floatfoam's rebuilt one unless [run] solver names another.
+    ``check``: refuse one that does not exist (a digest, which only names it, does not)."""
+    path = Path(case.settings.run.solver or layout.SOLVER)
+    path = path if path.is_absolute() else layout.ROOT / path
+    if check and not path.is_file():
+        raise InputError(f"run.solver = {str(path)!r} does not exist; run `make setup` to build "
+                         "floatfoam's interFoam (scripts/build_solver.sh)")
+    return path
