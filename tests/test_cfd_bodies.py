@@ -300,16 +300,17 @@ def test_triaxial_ellipsoid_pitch_3d(tmp_path):
 
 def test_a_users_stl_body_rolls_with_its_added_inertia(tmp_path):
     """A body a user brings as an STL file (cases/stl_pontoon: a 1.2 m pontoon of flattened-
-    octagon section) heeled 8°, in the whole 3D tank (its STL's flat patches remeshed by gmsh,
-    three prism layers at the body by default: 168,484 cells at the coarse level). On a 0.1 s
-    record (the first sixth of a roll period; its whole record, 3.6 s, runs under `make
+    octagon section) heeled 8°: found symmetric about x = 0 from its triangles, meshed in the
+    half tank x ≥ 0 (its STL's flat patches cut along the plane and remeshed by gmsh, three
+    prism layers at the body by default: 86,539 cells at the coarse level). On a 0.1 s record
+    (the first sixth of a roll period; its whole record, 3.6 s, runs under `make
     stl_pontoon`): stable, starting at 8°, and falling back as the fluid's inertia
     allows — the roll's drop over 0.1 s within 10 % of Cummins' model (measured 2.52° against
-    2.39°, +5.4 %, on the whole record's first 0.1 s; without layers 2.54°, +6 %; at release
-    the motion is set by the added inertia at infinite frequency), where the body without
-    added inertia (the memoir's linear model) would fall 3.75°."""
+    2.39°, +5.2 %, in the half tank; at release the motion is set by the added inertia at
+    infinite frequency), where the body without added inertia (the memoir's linear model)
+    would fall 3.75°."""
     case, _, motion, info = cfd("stl_pontoon", tmp_path, ["run.end_time=0.1"])
-    assert info["mesh"] == "3d"
+    assert info["mesh"] == "3d-half"
     assert motion["roll"][0] == pytest.approx(8.0, abs=1e-3)
 
     def drop(series):

@@ -29,7 +29,7 @@ def planned(name, overrides=()):
     ("elliptic_cylinder", "2d", 1.0),
     ("sphere", "wedge", 5.0 / 360.0),
     ("ellipsoid_roll", "3d-half", 0.5),
-    ("stl_pontoon", "3d", 1.0),
+    ("stl_pontoon", "3d-half", 0.5),  # symmetric about x = 0 (its triangles), heeled about x
 ])
 def test_each_body_gets_its_mesh(name, kind, share):
     _, _, mesh = planned(name)
@@ -94,7 +94,7 @@ def test_morphing_past_the_clamped_bottom_is_named():
 
 
 def test_the_morphing_zone_reaches_as_far_as_the_tank_allows():
-    """The six-DoF distances' defaults (floatfoam.foam.domain._distances): rigid within half
+    """The six-DoF distances' defaults (floatfoam.foam.motion_zone.distances): rigid within half
     the body's smallest dimension, fixed beyond 0.9 × the room between the body at its release
     and the nearest held wall: for the capsizing ellipse (half beam 0.1 m, half height 0.15 m,
     released at 2°) the default tank's 0.9 m of air above the still water. A body that turns
@@ -221,9 +221,10 @@ def test_a_section_centre_of_mass_is_mid_slab(tmp_path, name):
     assert coeffs["centreOfMass"][0] == pytest.approx(mesh.x_mid, abs=1e-12)
 
 
-@pytest.mark.parametrize("name, solver", [("elliptic_cylinder", "GAMG"), ("stl_pontoon", "GAMG"),
+@pytest.mark.parametrize("name, solver", [("elliptic_cylinder", "GAMG"),
+                                          ("superellipsoid_buoy", "GAMG"),  # heeled and trimmed
                                           ("cylinder_heave", "PCG"), ("sphere", "PCG"),
-                                          ("ellipsoid_roll", "PCG")])
+                                          ("ellipsoid_roll", "PCG"), ("stl_pontoon", "PCG")])
 def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
     """pcorr by GAMG on gmsh's sections and whole tanks, where it measured faster, by the
     shared PCG elsewhere (render.PCORR_BY_GAMG); the same tolerance either way."""

@@ -530,11 +530,11 @@ def test_a_changed_mesh_motion_rule_makes_a_finished_run_foreign(monkeypatch):
     """The stamp holds the mesh motion the defaults resolve to (the Laplacian or the six-DoF
     distances, and their values): a run made on the distances is not one of a case that now
     resolves to the Laplacian, though its case file and settings are the same."""
-    from floatfoam.foam import domain
+    from floatfoam.foam import motion_zone
 
     case = load_case("box_bilge")  # 2D roll: the Laplacian
     now = settings_digest(case, "coarse")
-    monkeypatch.setattr(domain, "mesh_motion", lambda case, kind: "distances")
+    monkeypatch.setattr(motion_zone, "mesh_motion", lambda case, kind: "distances")
     assert settings_digest(case, "coarse") != now
 
 

@@ -217,6 +217,10 @@ class GmshSettings:
                                   "when given)")
     layers_height_3d: float = _spec(1.0, minimum=0.0, maximum=5.0, added=True,
                                     doc="the prism layers' total height, in body cells")
+    half_3d: bool = _spec(True, kind=bool, added=True,
+                          doc="mesh half the tank, with a symmetry plane, for a body symmetric "
+                              "about x = 0 or y = 0 (found from its shape or triangles) whose "
+                              "G and motion keep that plane; false: the whole tank")
     margin: float = _spec(0.5, minimum=0.0, maximum=50.0,
                           doc="half-thickness of the core block around the body, × its smallest "
                               "dimension")

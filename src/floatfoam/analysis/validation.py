@@ -330,14 +330,14 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
 
 
 def mesh_motion_record(case, found, morphing: float | None) -> dict:
-    """How the study's runs moved their mesh (:func:`floatfoam.foam.domain.mesh_motion` of
+    """How the study's runs moved their mesh (:func:`floatfoam.foam.motion_zone.mesh_motion` of
     the case on its runs' mesh), and what its mesh-motion run varied: ``motion``
     ("laplacian", "distances"; None without a run's record), ``diffusivity`` (the
     Laplacian's, in words), ``factor``, ``run`` (its folder), ``variant`` (in words,
     :func:`floatfoam.foam.morphing.morphing_variant`), ``studied`` (its run finished: U_motion
     joins U_num) and ``note``. ``found``: :func:`study_runs`."""
-    from floatfoam.foam.domain import mesh_motion
     from floatfoam.foam.morphing import morphing_variant
+    from floatfoam.foam.motion_zone import mesh_motion
     from floatfoam.settings import MOTION_DIFFUSIVITIES
 
     kinds = [_info(run).get("mesh") for _, _, factor, run in found if factor == 1]

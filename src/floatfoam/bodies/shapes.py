@@ -11,6 +11,7 @@ centre of the bounding box for the primitives), x along the long axis, z up. A b
 from __future__ import annotations
 
 import math
+from functools import cached_property
 
 import numpy as np
 
@@ -36,6 +37,10 @@ class Body:
     def keel_z(self) -> float:
         """Height of the keel (lowest point of the upright body) in the body frame."""
         return float(self.lo[2])
+
+    #: the planes x = 0 and y = 0 ("x", "y") the body is mirror symmetric about, for a half
+    #: domain in 3D (:func:`floatfoam.meshing.domains.half_plane`); none unless a shape says
+    mirror_planes: tuple[str, ...] = ()
 
     def surface_mesh(self, resolution=None):
         raise NotImplementedError
@@ -157,6 +162,8 @@ class Box(SectionBody):
 class Ellipsoid(Body):
     """Triaxial ellipsoid of semi-axes (a_x, a_y, a_z); the sphere has them equal."""
 
+    mirror_planes = ("x", "y")
+
     def __init__(self, semi_axes):
         self.axes = np.asarray(semi_axes, dtype=float)
         self.lo, self.hi = -self.axes, self.axes.copy()
@@ -182,6 +189,14 @@ class MeshBody(Body):
 
     def surface_mesh(self, resolution=None):
         return self.vertices, self.faces
+
+    @cached_property
+    def mirror_planes(self) -> tuple[str, ...]:
+        """The planes x = 0 and y = 0 ("x", "y") the body is mirror symmetric about
+        (:func:`floatfoam.bodies.mirror.mirror_planes`)."""
+        from floatfoam.bodies.mirror import mirror_planes
+
+        return mirror_planes(self.vertices, self.faces, self.expression)
 
 
 def _inside_polygon(poly: np.ndarray, y: float, z: float) -> bool:

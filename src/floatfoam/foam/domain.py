@@ -18,6 +18,7 @@ from pathlib import Path
 from floatfoam.bodies.shapes import EllipticCylinder
 from floatfoam.case import Case
 from floatfoam.errors import InputError
+from floatfoam.foam import motion_zone
 from floatfoam.foam.ogrid import OGrid
 from floatfoam.layout import LEVELS
 from floatfoam.meshing.levels import level_index, refinement_ratio
@@ -47,7 +48,8 @@ class RunMesh:
         domain decomposition)
     inner, outer : six-DoF morphing distances from the body (rigid inside, fixed beyond), for
         ``motion`` "distances"
-    motion : how the mesh follows the body, "laplacian" or "distances" (:func:`mesh_motion`)
+    motion : how the mesh follows the body, "laplacian" or "distances"
+        (:func:`floatfoam.foam.motion_zone.mesh_motion`)
     ogrid : the O-grid (kind "ogrid"); msh : the gmsh file (other kinds, once generated)
     immersed_error : relative error of the body patch's immersed volume at the pose the mesh is
         made at (run.mesh_pose: the release's by default)
@@ -114,33 +116,11 @@ def plan(case: Case, level: str, release: Pose, *, local: bool = True) -> RunMes
                else (2 * box.half_length, box.half_width, height)}[kind]
     walls = [box.air_height, box.depth, box.half_length] + (
         [box.half_width] if kind.startswith("3d") else [])
-    inner, outer = _distances(case, float(body_extents(case.body).min()),
-                              _clearance(case, release, walls, kind))
+    inner, outer = motion_zone.distances(case, float(body_extents(case.body).min()),
+                              motion_zone.clearance(case, release, walls, kind))
     return RunMesh(kind=kind, factor=level_factor(case, level), cells=None, share=share,
                    x_mid=0.0 if kind == "2d" else None, extents=extents, inner=inner,
-                   outer=outer, motion=mesh_motion(case, kind))
-
-
-def mesh_motion(case: Case, kind: str) -> str:
-    """How the mesh follows the body (``run.mesh_motion``; "auto" resolved here).
-
-    "laplacian": ``displacementLaplacian`` with the diffusivity ``quadratic inverseDistance
-    (body)`` and the body's point displacement from the six-DoF equations
-    (``sixDoFRigidBodyDisplacement``): the whole tank deforms, the cells near the body move
-    nearly with it, and no distance is set.
-    "distances": the six-DoF motion solver, rigid within ``run.inner_distance`` and fixed
-    beyond ``run.outer_distance``: the route of rotations and of a mesh made at rest.
-    "auto" is laplacian on a 2D section's, an O-grid's or a wedge's mesh made at the release,
-    unless the release turns the body over (a heel or trim in a DoF of non-positive stiffness,
-    :func:`_turns_over`), and distances otherwise: a displacement field cannot follow a turn
-    of tens of degrees, and in 3D it gives the distances' damping (a period 0.5 % shorter)
-    at 1.4 × the wall. The measurements behind this rule: docs/morphing.md."""
-    choice = case.settings.run.mesh_motion
-    if choice != "auto":
-        return choice
-    planar = kind in ("2d", "wedge", "ogrid")
-    return "laplacian" if planar and case.settings.run.mesh_pose == "release" \
-        and not _turns_over(case) else "distances"
+                   outer=outer, motion=motion_zone.mesh_motion(case, kind))
 
 
 def clamped_bottom(mesh: RunMesh, case: Case, release: Pose,
@@ -185,89 +165,6 @@ def _wedge_angle() -> float:
     from floatfoam.meshing.planar import WEDGE_ANGLE
 
     return WEDGE_ANGLE
-
-
-#: the inner distance's default, × the body's smallest dimension across
-INNER_SHARE = 0.5
-#: the outer distance's default, × the clearance between the body at its release and the
-#: nearest held wall (:func:`_clearance`): the rest is left to the walls' first cells
-OUTER_SHARE = 0.9
-
-
-def _distances(case: Case, length: float, clearance: float) -> tuple[float, float]:
-    """[run] inner and outer distances, else their defaults from the body and the tank: the
-    mesh turns rigidly with the body within half of ``length`` (the O-grid's half square, or
-    the body's smallest dimension across for a gmsh mesh) and the zone between the distances,
-    where the cells are sheared and squeezed, is as wide as the tank allows: out to 0.9 ×
-    ``clearance``, the room between the body and the nearest held wall (:func:`_clearance`).
-    A wider zone shears each cell less for the same motion; one that reaches a held wall
-    squeezes the wall's first cells (:func:`clamped_bottom`). The inner distance is at most
-    half the outer one. docs/morphing.md has the measurements
-    behind the rule."""
-    run = case.settings.run
-    if run.outer_distance is None and clearance <= 0:
-        turning = " turning over" if _turns_over(case) else ""
-        raise InputError(f"the tank leaves the body no room to move: the body{turning} "
-                         f"reaches {-clearance:.3g} m past its nearest held wall; valid is a "
-                         "larger tank ([domain] half_length, half_width, depth, air_height) or "
-                         "run.inner_distance and run.outer_distance set")
-    outer = run.outer_distance if run.outer_distance is not None else OUTER_SHARE * clearance
-    inner = run.inner_distance if run.inner_distance is not None \
-        else min(INNER_SHARE * length, 0.5 * outer)
-    if not 0 < inner < outer:
-        raise InputError(f"run.inner_distance = {inner:g} m, run.outer_distance = {outer:g} m "
-                         "(defaulted from the body's size and its clearance to the tank's "
-                         "walls when not set): valid is 0 < inner_distance < outer_distance, "
-                         "with the walls beyond the outer distance")
-    return inner, outer
-
-
-def _clearance(case: Case, release: Pose, walls: list[float], kind: str) -> float:
-    """The room between the body and the tank's nearest held wall: the smallest distance from
-    the body at ``release`` to the top, the bottom and the ends (and the sides in 3D),
-    ``walls`` = [air height, depth, half-length, (half-width)] from the still water and the
-    tank's middle; a symmetry plane is not a held wall. A body released to turn over (a heel
-    or trim in a DoF whose hydrostatic stiffness is not positive: :func:`_turns_over`) must
-    have room for the circle it sweeps about its G: when it has not, the (negative) room left
-    to that circle is returned instead."""
-    import numpy as np
-
-    from floatfoam.bodies.geometry import rotation, to_earth
-
-    vertices, _ = case.body.surface_mesh()
-    earth = to_earth(vertices, release.z_c, release.heel, release.trim)
-    room = _room(earth.min(axis=0), earth.max(axis=0), walls, kind)
-    if not _turns_over(case):
-        return room
-    cog = np.asarray(case.cog, dtype=float)
-    reach = vertices - cog
-    if kind in ("2d", "ogrid"):
-        reach = reach[:, 1:]
-    radius = float(np.sqrt((reach ** 2).sum(axis=1)).max())
-    g = rotation(release.heel, release.trim) @ cog + np.array([0.0, 0.0, release.z_c])
-    swept = _room(g - radius, g + radius, walls, kind)
-    return room if swept > 0 else swept
-
-
-def _room(lo, hi, walls: list[float], kind: str) -> float:
-    """The smallest distance from the box ``lo``–``hi`` (earth frame) to the held walls."""
-    along = 1 if kind in ("2d", "ogrid") else 0
-    room = [walls[0] - hi[2], walls[1] + lo[2], walls[2] - max(hi[along], -lo[along])]
-    if len(walls) > 3:
-        room.append(walls[3] - max(hi[1], -lo[1]))
-    return float(min(room))
-
-
-def _turns_over(case: Case) -> bool:
-    """Whether the release heels or trims the body in a DoF whose hydrostatic stiffness about
-    G is not positive (Le Barbier's verdict: it capsizes or stays)."""
-    heel, trim = case.release["heel"], case.release["trim"]
-    if not (heel or trim):
-        return False
-    from floatfoam.hydrostatics.theory import stiffness_matrix
-
-    stiffness = stiffness_matrix(case)
-    return bool((heel and stiffness[1, 1] <= 0) or (trim and stiffness[2, 2] <= 0))
 
 
 def generate(mesh: RunMesh, case: Case, level: str, equilibrium, folder: Path, *,
@@ -407,9 +304,10 @@ def _ogrid_plan(case: Case, level: str, release: Pose, local: bool) -> RunMesh:
     )
     _check_square(case, grid)
     _check_memory(grid.cell_count(), level, local, "[mesh] cell counts")
-    inner, outer = _distances(case, grid.square, _clearance(
+    inner, outer = motion_zone.distances(case, grid.square, motion_zone.clearance(
         case, release, [grid.air_height, grid.depth, grid.half_length], "ogrid"))
     return RunMesh(kind="ogrid", factor=grid.factor, cells=grid.cell_count(),
                    share=grid.thickness / body.length, x_mid=grid.thickness / 2.0,
                    extents=(0.0, 2 * grid.half_length, grid.depth + grid.air_height),
-                   inner=inner, outer=outer, ogrid=grid, motion=mesh_motion(case, "ogrid"))
+                   inner=inner, outer=outer, ogrid=grid,
+                   motion=motion_zone.mesh_motion(case, "ogrid"))

@@ -28,7 +28,7 @@ def check_morphing(factor: float, *, study: bool = False) -> None:
 
 
 def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool = True) -> Case:
-    """The case with its mesh motion (:func:`floatfoam.foam.domain.mesh_motion`) spread wider
+    """The case with its mesh motion (:func:`floatfoam.foam.motion_zone.mesh_motion`) spread wider
     or narrower by ``factor`` > 0 (:func:`morphing_variant` says how, in words):
 
     * the six-DoF solver's distances — the mesh moves rigidly with the body within
@@ -62,7 +62,7 @@ def distance_factor(case: Case, factor: float) -> float:
     """What the six-DoF distances are multiplied by in a run of mesh-motion factor ``factor``:
     ``factor`` itself, but 1 / ``factor`` for a widening (``factor`` > 1) of the defaults,
     whose outer distance already reaches 0.9 × the room to the tank's nearest held wall
-    (:func:`floatfoam.foam.domain._distances`): widened, the zone would squeeze the walls'
+    (:func:`floatfoam.foam.motion_zone.distances`): widened, the zone would squeeze the walls'
     first cells; narrowed as much, it says as much of the distances' effect."""
     return 1.0 / factor if factor > 1 and case.settings.run.outer_distance is None else factor
 

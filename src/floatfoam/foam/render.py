@@ -230,9 +230,10 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | Non
     at release, so the reported orientation is the body's attitude. A mesh made at
     equilibrium (``state["mesh_offset"]``) gets G there as the initial centre of mass.
 
-    The mesh follows the body as ``mesh.motion`` says (:func:`floatfoam.foam.domain.mesh_motion`):
-    the six-DoF motion solver with its distances, or ``displacementLaplacian`` (its
-    diffusivity :data:`LAPLACIAN_DIFFUSIVITY` of ``run.motion_diffusivity``) whose body
+    The mesh follows the body as ``mesh.motion`` says
+    (:func:`floatfoam.foam.motion_zone.mesh_motion`): the six-DoF motion solver with its
+    distances, or ``displacementLaplacian`` (its diffusivity :data:`LAPLACIAN_DIFFUSIVITY` of
+    ``run.motion_diffusivity``) whose body
     patch carries the same six-DoF dictionary as its point displacement condition
     (``sixDoFRigidBodyDisplacement``, v1912's src/sixDoFRigidBodyMotion/pointPatchFields):
     then the body's condition is returned, for the caller to write into pointDisplacement

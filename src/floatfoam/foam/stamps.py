@@ -52,7 +52,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
 
 def _resolved_motion(case: Case, level: str) -> list | None:
     """How the run's mesh follows the body once "auto" and the distances' defaults are
-    resolved (:func:`floatfoam.foam.domain.mesh_motion`, ``_distances``): ["laplacian"], or
+    resolved (:func:`floatfoam.foam.motion_zone.mesh_motion`, ``distances``): ["laplacian"], or
     ["distances", inner, outer]; a rule that resolves them otherwise makes the runs made
     before it foreign. None when the case has no mesh plan (its input is refused there)."""
     from floatfoam.hydrostatics.theory import equilibrium

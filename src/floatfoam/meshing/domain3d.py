@@ -14,9 +14,12 @@ the body, so the radiated waves keep more of their resolution.
 
 Bodies with an exact geometry are OpenCASCADE solids cut out of the tank. Bodies given as
 triangles (``stl``, ``implicit``) are classified into smooth patches (feature angle
-:data:`FEATURE_ANGLE`), reparametrised and remeshed at the same sizes, and the tank is built
-around them with gmsh's built-in kernel; an implicit body's marching-cubes triangles are first
-relaxed onto F = 0 (:func:`relax_on_surface`), their slivers defeat the reparametrisation.
+:data:`~floatfoam.meshing.surface3d.FEATURE_ANGLE`), reparametrised and remeshed at the same
+sizes, and the tank is built around them with gmsh's built-in kernel; an implicit body's
+marching-cubes triangles are first relaxed onto F = 0
+(:func:`~floatfoam.meshing.surface3d.relax_on_surface`), their slivers defeat the
+reparametrisation. In a half domain their half is cut along the plane
+(:func:`~floatfoam.meshing.surface3d.half_surface`).
 
 Prism layers (``mesh.gmsh.layers_3d``, 3 by default at a body given by triangles, none at an
 exact solid: settings.TRIANGLE_LAYERS): the body's surface mesh extruded outwards along its
@@ -26,9 +29,9 @@ cost is small (3 layers: +2 % cells on the 3D sphere), and they stand in for the
 tetrahedra at the body, where the free surface meets it. An ellipsoid takes them too when the
 case asks (``layers_3d`` > 0): OpenCASCADE meshes its surface (its half x ≥ 0 or y ≥ 0 in a
 half domain) at the same sizes, and that mesh takes the discrete route with the ellipsoid's
-exact normals (:func:`_solid_surface`), which at the symmetry plane lie in it, so the layers'
-side faces do too and join the plane's symmetry patch; gmsh's own normals there, from the
-triangles on one side only, leaned 0.4 mm out of it.
+exact normals (:func:`~floatfoam.meshing.surface3d.solid_surface`), which at the symmetry
+plane lie in it, so the layers' side faces do too and join the plane's symmetry patch; gmsh's
+own normals there, from the triangles on one side only, leaned 0.4 mm out of it.
 """
 
 from __future__ import annotations
@@ -41,17 +44,24 @@ import numpy as np
 
 from floatfoam import gmshio
 from floatfoam.bodies import shapes as bodies
-from floatfoam.bodies.geometry import rotation
 from floatfoam.bodies.surfaces import compile_expression
 from floatfoam.errors import InputError
 from floatfoam.meshing import sections
 from floatfoam.meshing.body_surface import place
 from floatfoam.meshing.levels import MeshSpec
+from floatfoam.meshing.surface3d import (
+    FEATURE_ANGLE,
+    PLANE_EPS,
+    VERBOSITY,
+    ellipsoid_normals,
+    half_surface,
+    onto_ellipsoid,
+    relax_on_surface,
+    solid_surface,
+)
 from floatfoam.tank import Pose, Tank
 
 LAYER_GROWTH = 1.2  # each prism layer this much thicker than the one below it
-FEATURE_ANGLE = 20.0  # degrees: sharper turns between triangles stay edges (pontoon: 25.6°)
-VERBOSITY = 1  # gmsh messages: 1 errors only; 4 to see where the time goes
 
 
 def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
@@ -69,20 +79,23 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
     body = case.body
     surface = None
     if spec.layers_3d and not isinstance(body, bodies.MeshBody):  # its own gmsh session first
-        surface = _solid_surface(body, spec, half)
+        surface = solid_surface(body, spec, half)
     with gmshio.session(f"{case.name}-3d", verbosity=VERBOSITY) as gmsh:
         if isinstance(body, bodies.MeshBody):
-            vertices = body.vertices
+            vertices, faces = body.vertices, body.faces
             if body.expression is not None:  # an implicit surface: nodes back onto F = 0
                 func = compile_expression(body.expression)
-                vertices = relax_on_surface(vertices, body.faces, func, spec.span)
-            body_surfaces, volume, layers = _discrete_body(gmsh, vertices, body.faces, where,
-                                                           tank, spec)
+                vertices = relax_on_surface(vertices, faces, func, spec.span)
+            normals = None
+            if half:
+                vertices, faces, normals = half_surface(vertices, faces, half, spec)
+            body_surfaces, volume, layers = _discrete_body(gmsh, vertices, faces, where,
+                                                           tank, spec, half, normals=normals)
         elif spec.layers_3d:  # an ellipsoid's surface meshed by OpenCASCADE, then as triangles
             vertices, faces = surface
             body_surfaces, volume, layers = _discrete_body(
                 gmsh, vertices, faces, where, tank, spec, half,
-                normals=_ellipsoid_normals(body, vertices))
+                normals=ellipsoid_normals(body, vertices))
         else:
             body_surfaces, volume = _solid_body(gmsh, body, where, tank, spec, half)
             layers = Layers()
@@ -93,7 +106,7 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
                     curvature=not isinstance(body, bodies.MeshBody))
         gmsh.model.mesh.generate(3)
         if surface is not None:  # remeshed on OpenCASCADE's triangles: back onto the solid
-            _onto_ellipsoid(gmsh, body, body_surfaces, where, layer_heights(spec)[0])
+            onto_ellipsoid(gmsh, body, body_surfaces, where, layer_heights(spec)[0])
         groups = _physical_groups(gmsh, volume, body_surfaces, tank, half, layers)
         gmshio.write_msh22(path)
         result = summary(gmsh, groups, path)
@@ -124,108 +137,6 @@ def _solid_body(gmsh, body, where: Pose, tank: Tank, spec: MeshSpec,
     return [tag for tag in faces if tag not in walls], volume
 
 
-def _solid_surface(body, spec: MeshSpec, half: str | None) -> tuple[np.ndarray, np.ndarray]:
-    """An ellipsoid's surface as OpenCASCADE meshes it at the 3D sizes (h₀, finer where it
-    turns fast, as in :func:`_solid_body`), with ``half`` only its half ``half`` ≥ 0 (the
-    cut's nodes exactly on the plane): (vertices, outward faces), body frame."""
-    from floatfoam.meshing.body_surface import size_options
-
-    if not isinstance(body, bodies.Ellipsoid):
-        raise TypeError(f"prism layers at a {type(body).__name__}: only at an ellipsoid or "
-                        "a body given by triangles")
-    with gmshio.session("surface", verbosity=VERBOSITY) as gmsh:
-        occ = gmsh.model.occ
-        solid = sections.add_solid(body)
-        if half:
-            k = "xy".index(half)
-            big = 2.0 * float(np.max(body.axes))
-            corner = [-big, -big, -big]
-            corner[k] = 0.0
-            extent = [2 * big] * 3
-            extent[k] = big
-            out, _ = occ.intersect([(3, solid)], [(3, occ.addBox(*corner, *extent))])
-            solid = out[0][1]
-        occ.synchronize()
-        size_options(gmsh, spec.body_size_3d, spec.curvature_points)
-        gmsh.model.mesh.generate(2)
-        faces = [abs(tag) for _, tag in gmsh.model.getBoundary([(3, solid)], oriented=False)]
-        if half:  # the cut face is the symmetry plane's, not the body's
-            cut = set()
-            for tag in faces:
-                box = gmsh.model.getBoundingBox(2, tag)
-                if max(abs(box[k]), abs(box[k + 3])) < PLANE_EPS:
-                    cut.add(tag)
-            faces = [tag for tag in faces if tag not in cut]
-        vertices, triangles = gmshio.surface_triangles(faces)
-    if half:
-        vertices[np.abs(vertices[:, k]) < PLANE_EPS, k] = 0.0
-    # outward: away from the centre, about which an ellipsoid is star-shaped
-    corners = vertices[triangles]
-    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    if float(np.sum(normal * corners.mean(axis=1))) < 0.0:
-        triangles = triangles[:, ::-1].copy()
-    return vertices, triangles
-
-
-def _ellipsoid_normals(body, vertices: np.ndarray) -> np.ndarray:
-    """The exact outward unit normals of an ellipsoid at body-frame points on it: ∇ of
-    (x/a)² + (y/b)² + (z/c)², normalised."""
-    gradient = vertices / body.axes**2
-    return gradient / np.linalg.norm(gradient, axis=1)[:, None]
-
-
-def _onto_ellipsoid(gmsh, body, surfaces: list[int], where: Pose, first: float) -> None:
-    """Move the nodes of the body's surfaces, remeshed on OpenCASCADE's triangles, onto the
-    exact ellipsoid along the rays from its centre (by ~h²/(8R), a fraction of a millimetre;
-    nodes in a symmetry plane stay in it). On `ellipsoid`'s coarse mesh the immersed volume's
-    error goes from −0.72 % to −0.39 %, the route without layers' −0.38 %."""
-    turn = rotation(where.heel, where.trim)
-    shift = np.array([0.0, 0.0, where.z_c])
-    moved: dict[int, np.ndarray] = {}
-    for tag in surfaces:
-        tags, coords, _ = gmsh.model.mesh.getNodes(2, tag, includeBoundary=True)
-        for node, point in zip(tags, coords.reshape(-1, 3), strict=True):
-            moved[int(node)] = point
-    nodes = np.array(list(moved))
-    local = (np.array(list(moved.values())) - shift) @ turn  # body frame
-    onto = local / np.sqrt(np.sum((local / body.axes) ** 2, axis=1))[:, None]
-    move = float(np.max(np.linalg.norm(onto - local, axis=1)))
-    if move > 0.5 * first:  # towards the layers, whose tops stay: the first would fold
-        raise InputError(f"mesh.gmsh.layers_height_3d: the first prism layer, {first * 1e3:.3g} "
-                         f"mm, is too thin for the body's nodes, which move {move * 1e3:.3g} mm "
-                         "onto the ellipsoid; valid: a first layer over twice that (fewer "
-                         "mesh.gmsh.layers_3d or a larger layers_height_3d)")
-    local = onto
-    for node, point in zip(nodes, local @ turn.T + shift, strict=True):
-        gmsh.model.mesh.setNode(int(node), point.tolist(), [])
-
-
-def relax_on_surface(vertices: np.ndarray, faces: np.ndarray, func, size: float,
-                     iterations: int = 20) -> np.ndarray:
-    """Marching-cubes triangles made fit for remeshing: each sweep moves every vertex half-way
-    to the mean of its neighbours (uniform Laplacian), then back onto F = 0 by Newton steps
-    along the gradient (central differences). Slivers (triangle quality ~1e-3) become regular
-    (~0.3 at worst) and the vertices end on the exact surface, not on its trilinear
-    interpolation."""
-    import scipy.sparse as sp
-
-    n = len(vertices)
-    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    adjacency = sp.coo_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(n, n))
-    adjacency = ((adjacency + adjacency.T) > 0).astype(float).tocsr()
-    degree = np.asarray(adjacency.sum(axis=1)).ravel()[:, None]
-    step = 1e-6 * size
-    v = np.array(vertices, dtype=float)
-    for _ in range(iterations):
-        v += 0.5 * (adjacency @ v / degree - v)
-        for _ in range(4):
-            value = func(*v.T)
-            grad = np.column_stack([(func(*(v + step * e).T) - func(*(v - step * e).T))
-                                    / (2 * step) for e in np.eye(3)])
-            v -= (value / np.maximum((grad * grad).sum(axis=1), 1e-300))[:, None] * grad
-    return v
-
-
 @dataclass(frozen=True)
 class Layers:
     """The prism layers' volumes, their outer surfaces and, in a half domain, their side
@@ -249,10 +160,11 @@ def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank, spec: MeshSpe
                    ) -> tuple[list[int], int, Layers]:
     """A triangulated body as reparametrised discrete surfaces, its prism layers if
     ``spec.layers_3d``, and the tank around them (its half ``half`` ≥ 0, the body's half
-    surface cut out of that plane). ``normals`` (body frame, one per vertex): the direction
-    of the layers, else gmsh's from the triangles."""
-    if normals is not None:
-        normals = place(vertices + normals, where) - place(vertices, where)
+    surface cut out of that plane). ``normals`` (body frame, one per vertex (N, 3) or per
+    triangle corner (T, 3, 3)): the direction of the layers, else gmsh's from the triangles."""
+    if normals is not None:  # turned to the pose (directions: no shift)
+        flat = normals.reshape(-1, 3)
+        normals = (place(flat, where) - place(np.zeros_like(flat), where)).reshape(normals.shape)
     vertices = place(vertices, where)
     _check_room(vertices.min(axis=0), vertices.max(axis=0), tank, spec)
     surface = gmsh.model.addDiscreteEntity(2)
@@ -312,10 +224,12 @@ def _rim(gmsh, surfaces: list[int]) -> list[int]:
 
 
 def _normals_view(gmsh, vertices: np.ndarray, faces: np.ndarray, normals: np.ndarray) -> int:
-    """A list-data view of vectors on the triangles (gmsh's "VT": each triangle's corners,
-    then a vector at each): where the boundary layer's extrusion looks its normals up, by
-    position, on the surface as it will be remeshed. Returns the view's index."""
-    corners, vectors = vertices[faces], normals[faces]  # (T, 3 corners, 3)
+    """A list-data view of vectors (per vertex, or per triangle corner) on the triangles
+    (gmsh's "VT": each triangle's corners, then a vector at each): where the boundary layer's
+    extrusion looks its normals up, by position, on the surface as it will be remeshed.
+    Returns the view's index."""
+    corners = vertices[faces]  # (T, 3 corners, 3)
+    vectors = normals[faces] if normals.ndim == 2 else normals
     data = np.concatenate([corners.transpose(0, 2, 1).reshape(len(faces), 9),
                            vectors.reshape(len(faces), 9)], axis=1)
     view = gmsh.view.add("layer normals")
@@ -323,7 +237,6 @@ def _normals_view(gmsh, vertices: np.ndarray, faces: np.ndarray, normals: np.nda
     return gmsh.view.getIndex(view)
 
 
-PLANE_EPS = 2e-5  # m: OpenCASCADE pads bounding boxes by up to ~1e-5 m (a 2 m tank's 2e-6
                   # missed the symmetry plane)
 
 

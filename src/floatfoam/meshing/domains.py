@@ -2,7 +2,8 @@
 
 Kinds: ``2d`` (2D sections, one cell thick), ``wedge`` (bodies of revolution about z, upright),
 ``3d`` (any body), ``3d-half`` (x ≥ 0 and a symmetry plane x = 0 for a heel or a heave, y ≥ 0
-and y = 0 for a trim: a body and a motion that keep that plane). ``auto`` takes 2d for a
+and y = 0 for a trim: a body symmetric about that plane, an STL's found so from its
+triangles, and a motion that keeps it). ``auto`` takes 2d for a
 section, wedge for an upright body of revolution, 3d-half where it can, 3d otherwise.
 """
 
@@ -43,15 +44,17 @@ def _frees_only(case, names) -> bool:
 def half_plane(case, where: Pose) -> str | None:
     """The symmetry plane the body and its motion keep, "x" (x = 0: no trim, no DoF freed
     out of the (y, z) plane) or "y" (y = 0: no heel, none out of the (x, z) plane), for a
-    primitive solid symmetric about both (ellipsoid, sphere) with G on it; None otherwise."""
-    from floatfoam.bodies.shapes import Ellipsoid
-
-    if not isinstance(case.body, Ellipsoid):
+    body symmetric about it (an ellipsoid or sphere about both; a body given by triangles, STL
+    or implicit, where :func:`floatfoam.bodies.mirror.mirror_planes` finds it) with G on it;
+    None otherwise, or when ``mesh.gmsh.half_3d`` is false."""
+    if not case.settings.mesh.gmsh.half_3d:
         return None
-    if where.trim == 0.0 and case.cog[0] == 0.0 and _frees_only(case, ("heave", "roll", "sway")):
+    planes = case.body.mirror_planes
+    if "x" in planes and where.trim == 0.0 and case.cog[0] == 0.0 \
+            and _frees_only(case, ("heave", "roll", "sway")):
         return "x"
-    if where.heel == 0.0 and case.cog[1] == 0.0 and _frees_only(case, ("heave", "pitch",
-                                                                       "surge")):
+    if "y" in planes and where.heel == 0.0 and case.cog[1] == 0.0 \
+            and _frees_only(case, ("heave", "pitch", "surge")):
         return "y"
     return None
 
@@ -98,9 +101,10 @@ def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release
     check_layers(case, kind)
     half = half_plane(case, where) if kind == "3d-half" else None
     if kind == "3d-half" and half is None:
-        raise InputError(f"--kind 3d-half: {case.name} keeps no symmetry plane at this pose (an "
-                         "ellipsoid or sphere with G on x = 0 and no trim, or on y = 0 and no "
-                         "heel); valid kinds for it: 3d")
+        raise InputError(f"--kind 3d-half: {case.name} keeps no symmetry plane at this pose (a "
+                         "body symmetric about x = 0 with G on it and no trim, or about y = 0 "
+                         "with G on it and no heel; mesh.gmsh.half_3d = true); valid kinds for "
+                         "it: 3d")
     if kind in ("3d", "3d-half"):
         result = domain_3d(case, spec, box, where, path, half=half)
         vertices, faces = result.pop("body_triangles")

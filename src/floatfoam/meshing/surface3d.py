@@ -1,0 +1,150 @@
+"""The body's surface as the 3D mesher takes it (:mod:`floatfoam.meshing.domain3d`): an
+implicit body's triangles relaxed onto F = 0 (:func:`relax_on_surface`), a symmetric body's
+half cut along its plane with the normals of its prism layers (:func:`half_surface`), and an
+ellipsoid's surface meshed by OpenCASCADE for its layers (:func:`solid_surface`), with its exact
+normals (:func:`ellipsoid_normals`) and its remeshed nodes put back onto it
+(:func:`onto_ellipsoid`)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from floatfoam import gmshio
+from floatfoam.bodies import shapes as bodies
+from floatfoam.bodies.geometry import rotation
+from floatfoam.errors import InputError
+from floatfoam.meshing import sections
+from floatfoam.meshing.levels import MeshSpec
+from floatfoam.tank import Pose
+
+FEATURE_ANGLE = 20.0  # degrees: sharper turns between triangles stay edges (pontoon: 25.6°)
+
+
+VERBOSITY = 1  # gmsh messages: 1 errors only; 4 to see where the time goes
+
+
+def solid_surface(body, spec: MeshSpec, half: str | None) -> tuple[np.ndarray, np.ndarray]:
+    """An ellipsoid's surface as OpenCASCADE meshes it at the 3D sizes (h₀, finer where it
+    turns fast, as in :func:`_solid_body`), with ``half`` only its half ``half`` ≥ 0 (the
+    cut's nodes exactly on the plane): (vertices, outward faces), body frame."""
+    from floatfoam.meshing.body_surface import size_options
+
+    if not isinstance(body, bodies.Ellipsoid):
+        raise TypeError(f"prism layers at a {type(body).__name__}: only at an ellipsoid or "
+                        "a body given by triangles")
+    with gmshio.session("surface", verbosity=VERBOSITY) as gmsh:
+        occ = gmsh.model.occ
+        solid = sections.add_solid(body)
+        if half:
+            k = "xy".index(half)
+            big = 2.0 * float(np.max(body.axes))
+            corner = [-big, -big, -big]
+            corner[k] = 0.0
+            extent = [2 * big] * 3
+            extent[k] = big
+            out, _ = occ.intersect([(3, solid)], [(3, occ.addBox(*corner, *extent))])
+            solid = out[0][1]
+        occ.synchronize()
+        size_options(gmsh, spec.body_size_3d, spec.curvature_points)
+        gmsh.model.mesh.generate(2)
+        faces = [abs(tag) for _, tag in gmsh.model.getBoundary([(3, solid)], oriented=False)]
+        if half:  # the cut face is the symmetry plane's, not the body's
+            cut = set()
+            for tag in faces:
+                box = gmsh.model.getBoundingBox(2, tag)
+                if max(abs(box[k]), abs(box[k + 3])) < PLANE_EPS:
+                    cut.add(tag)
+            faces = [tag for tag in faces if tag not in cut]
+        vertices, triangles = gmshio.surface_triangles(faces)
+    if half:
+        vertices[np.abs(vertices[:, k]) < PLANE_EPS, k] = 0.0
+    # outward: away from the centre, about which an ellipsoid is star-shaped
+    corners = vertices[triangles]
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    if float(np.sum(normal * corners.mean(axis=1))) < 0.0:
+        triangles = triangles[:, ::-1].copy()
+    return vertices, triangles
+
+
+def half_surface(vertices: np.ndarray, faces: np.ndarray, half: str, spec: MeshSpec
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """A symmetric body's triangles on the side ``half`` ≥ 0 (:func:`floatfoam.bodies.mirror
+    .clip_half`), and the normals its prism layers take: None (gmsh's own, as in the whole
+    tank) where the surface meets the plane square to it, as a prism-shaped hull does; else
+    per triangle corner (:func:`floatfoam.bodies.mirror.corner_normals`, lying in the plane
+    at its edge there, where gmsh's, from one side only, would lean out of it)."""
+    from floatfoam.bodies.mirror import clip_half, corner_normals
+
+    k = "xy".index(half)
+    vertices, faces = clip_half(vertices, faces, k)
+    if not spec.layers_3d:
+        return vertices, faces, None
+    normals = corner_normals(vertices, faces, math.radians(FEATURE_ANGLE))
+    rim = vertices[faces][..., k] == 0.0
+    if float(np.abs(normals[..., k][rim]).max(initial=0.0)) < 1e-9:
+        return vertices, faces, None
+    return vertices, faces, corner_normals(vertices, faces, math.radians(FEATURE_ANGLE), k)
+
+
+def ellipsoid_normals(body, vertices: np.ndarray) -> np.ndarray:
+    """The exact outward unit normals of an ellipsoid at body-frame points on it: ∇ of
+    (x/a)² + (y/b)² + (z/c)², normalised."""
+    gradient = vertices / body.axes**2
+    return gradient / np.linalg.norm(gradient, axis=1)[:, None]
+
+
+def onto_ellipsoid(gmsh, body, surfaces: list[int], where: Pose, first: float) -> None:
+    """Move the nodes of the body's surfaces, remeshed on OpenCASCADE's triangles, onto the
+    exact ellipsoid along the rays from its centre (by ~h²/(8R), a fraction of a millimetre;
+    nodes in a symmetry plane stay in it). On `ellipsoid`'s coarse mesh the immersed volume's
+    error goes from −0.72 % to −0.39 %, the route without layers' −0.38 %."""
+    turn = rotation(where.heel, where.trim)
+    shift = np.array([0.0, 0.0, where.z_c])
+    moved: dict[int, np.ndarray] = {}
+    for tag in surfaces:
+        tags, coords, _ = gmsh.model.mesh.getNodes(2, tag, includeBoundary=True)
+        for node, point in zip(tags, coords.reshape(-1, 3), strict=True):
+            moved[int(node)] = point
+    nodes = np.array(list(moved))
+    local = (np.array(list(moved.values())) - shift) @ turn  # body frame
+    onto = local / np.sqrt(np.sum((local / body.axes) ** 2, axis=1))[:, None]
+    move = float(np.max(np.linalg.norm(onto - local, axis=1)))
+    if move > 0.5 * first:  # towards the layers, whose tops stay: the first would fold
+        raise InputError(f"mesh.gmsh.layers_height_3d: the first prism layer, {first * 1e3:.3g} "
+                         f"mm, is too thin for the body's nodes, which move {move * 1e3:.3g} mm "
+                         "onto the ellipsoid; valid: a first layer over twice that (fewer "
+                         "mesh.gmsh.layers_3d or a larger layers_height_3d)")
+    local = onto
+    for node, point in zip(nodes, local @ turn.T + shift, strict=True):
+        gmsh.model.mesh.setNode(int(node), point.tolist(), [])
+
+
+def relax_on_surface(vertices: np.ndarray, faces: np.ndarray, func, size: float,
+                     iterations: int = 20) -> np.ndarray:
+    """Marching-cubes triangles made fit for remeshing: each sweep moves every vertex half-way
+    to the mean of its neighbours (uniform Laplacian), then back onto F = 0 by Newton steps
+    along the gradient (central differences). Slivers (triangle quality ~1e-3) become regular
+    (~0.3 at worst) and the vertices end on the exact surface, not on its trilinear
+    interpolation."""
+    import scipy.sparse as sp
+
+    n = len(vertices)
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    adjacency = sp.coo_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(n, n))
+    adjacency = ((adjacency + adjacency.T) > 0).astype(float).tocsr()
+    degree = np.asarray(adjacency.sum(axis=1)).ravel()[:, None]
+    step = 1e-6 * size
+    v = np.array(vertices, dtype=float)
+    for _ in range(iterations):
+        v += 0.5 * (adjacency @ v / degree - v)
+        for _ in range(4):
+            value = func(*v.T)
+            grad = np.column_stack([(func(*(v + step * e).T) - func(*(v - step * e).T))
+                                    / (2 * step) for e in np.eye(3)])
+            v -= (value / np.maximum((grad * grad).sum(axis=1), 1e-300))[:, None] * grad
+    return v
+
+
+PLANE_EPS = 2e-5  # m: OpenCASCADE pads bounding boxes by up to ~1e-5 m (a 2 m tank's 2e-6
