@@ -207,20 +207,20 @@ def test_cli_refuses_too_short_a_record_in_one_line(tmp_path, capsys):
 
 
 def test_the_report_draws_a_roll_records_extinction_curve(tmp_path):
-    """The report's figure per roll record (analysis.report), and none for a record too short
-    for the fit (its decay figure stays)."""
+    """The report's figure per roll record (analysis.report_figures), and none for a record
+    too short for the fit (its decay figure stays)."""
     from types import SimpleNamespace
 
-    from floatfoam.analysis import report
+    from floatfoam.analysis import report_figures
     from floatfoam.analysis.decay import analyse_decay
 
     case = SimpleNamespace(name="box")
     (tmp_path / "box").mkdir()
     t, x = roll_decay()
     run = SimpleNamespace(level="coarse", dof="roll", result=analyse_decay(t, x))
-    [(name, alt)] = report._extinction_plot(case, run, tmp_path, 180 / math.pi, "deg")
+    [(name, alt)] = report_figures.extinction_plot(case, run, tmp_path, 180 / math.pi, "deg")
     assert name == "box/coarse_roll_extinction.png" and "extinction curve" in alt
     assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     short = SimpleNamespace(level="medium", dof="roll",
                             result=analyse_decay(*roll_decay(duration=2.2 * PERIOD)))
-    assert report._extinction_plot(case, short, tmp_path, 180 / math.pi, "deg") == []
+    assert report_figures.extinction_plot(case, short, tmp_path, 180 / math.pi, "deg") == []

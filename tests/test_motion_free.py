@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from steps import FAST_STEP
 
-from floatfoam import settings
+from floatfoam import fields, settings
 from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.foam.domain import plan
@@ -106,9 +106,9 @@ def test_a_bad_choice_is_one_line_and_writes_nothing(tmp_path, monkeypatch, caps
 def test_a_case_without_the_table_keeps_its_stamp():
     """[motion] at its default stamps nothing (runs made before it stay theirs); a choice is
     in the stamp (a run with another hold is another run)."""
-    assert "motion" not in settings.stamped(settings.Settings())
+    assert "motion" not in fields.stamped(settings.Settings())
     held = load_case("flume_section_roll_sway_held").settings
-    assert settings.stamped(held)["motion"] == {"free": ("heave", "roll")}
+    assert fields.stamped(held)["motion"] == {"free": ("heave", "roll")}
 
 
 def test_cummins_solves_the_dofs_the_case_frees():

@@ -272,7 +272,8 @@ def test_a_setting_added_later_leaves_the_runs_before_it():
     prism layers) too, so the runs made before they existed keep theirs. The layers a body
     given by triangles takes by default (3) are in it: its runs made without them are of
     other settings."""
-    from floatfoam.settings import TRIANGLE_LAYERS, stamped
+    from floatfoam.fields import stamped
+    from floatfoam.settings import TRIANGLE_LAYERS
 
     heave = load_case("cylinder_heave")
     assert "motion_diffusivity" not in stamped(heave.settings)["run"]

@@ -22,25 +22,12 @@ from pathlib import Path
 
 import numpy as np
 
-from floatfoam import settings
+from floatfoam import fields, settings
 from floatfoam.bodies import shapes
+from floatfoam.bodies.tables import OPTIONAL_BODY, SHAPES, make_body
 from floatfoam.dofs import RELEASE_KEYS, check_free
-from floatfoam.errors import InputError, is_number, number
+from floatfoam.errors import InputError, table_number, table_vector
 from floatfoam.layout import CASES_DIR, list_cases
-
-SHAPES = {
-    "circular_cylinder": ("radius", "length"),
-    "elliptic_cylinder": ("half_beam", "half_height", "length"),
-    "parabolic_cylinder": ("half_beam", "height", "length"),
-    "conic_cylinder": ("n", "m", "height", "length"),
-    "box": ("beam", "height", "length"),
-    "sphere": ("radius",),
-    "ellipsoid": ("semi_axes",),
-    "implicit": ("expression", "bounds"),
-    "stl": ("path",),
-}
-OPTIONAL_BODY = {"box": ("bilge_radius",), "implicit": ("resolution",), "stl": ("scale",),
-                 "conic_cylinder": ()}
 
 # Keys a case file (or --set) may hold, table by table (the stages' tables from their typed
 # settings, floatfoam.settings). None: free-form table.
@@ -52,7 +39,7 @@ SCHEMA = {
     "fluid": {"rho", "nu", "g", "depth", "rho_air", "nu_air"},
     "release": set(RELEASE_KEYS),
     "reference": None,
-    **{table: set(settings.keys(cls)) for table, cls in settings.TABLES.items()},
+    **{table: set(fields.keys(cls)) for table, cls in settings.TABLES.items()},
 }
 # What each key of the tables above the stages' means, with its unit (the stages' keys carry
 # theirs in floatfoam.settings); the documentation's reference is generated from both.
@@ -86,8 +73,6 @@ KEY_DOCS = {
     "reference": {"<name>": "a measurement: {value, uncertainty, source}, or a record "
                   "<name>_record = {file, source} (a CSV beside case.toml)"},
 }
-IMPLICIT_BYTES_PER_POINT = 32  # marching cubes input: F and the x, y, z grids, float64
-MAX_RESOLUTION = 400  # 400³ points take ~2 GiB
 DEFAULTS = {
     "fluid": {"rho": 1000.0, "nu": 1.0e-6, "g": 9.81, "rho_air": 1.0, "nu_air": 1.48e-5},
     "release": dict.fromkeys(RELEASE_KEYS, 0.0),
@@ -242,7 +227,7 @@ def apply_override(raw: dict, item: str) -> None:
     allowed = SCHEMA.get(table, set())
     head = name.split(".")[0]
     gmsh = table == "mesh" and head == "gmsh" and name.count(".") == 1 \
-        and name.split(".")[1] in settings.keys(settings.GmshSettings)
+        and name.split(".")[1] in fields.keys(settings.GmshSettings)
     known = table in SCHEMA and (allowed is None and head in raw.get(table, {})
                                  or allowed is not None and name in allowed or gmsh)
     if not known:
@@ -283,7 +268,7 @@ def _check_tables(raw: dict, complete: bool = True) -> None:
         if allowed is not None and table not in settings.TABLES:  # those: parse_settings
             for key in values:
                 if key not in allowed:
-                    raise settings.unknown_key(table, key, allowed)
+                    raise fields.unknown_key(table, key, allowed)
     for table in ("body", "mass") if complete else ():
         if table not in raw:
             raise InputError(f"the case has no [{table}] table; valid is a case.toml with "
@@ -291,140 +276,21 @@ def _check_tables(raw: dict, complete: bool = True) -> None:
                              "gyradius)")
 
 
-# Every number of a case lies within these magnitudes (SI units: a body from a micrometre to
-# a thousand kilometres, ν from 1e-12 m²/s): products of a few of them (a volume, an inertia)
-# stay far from float64's overflow and underflow, which a radius of 1e300 reaches.
-SMALLEST, LARGEST = 1e-12, 1e9
-
-
-def _number(cfg: dict, table: str, key: str, *, positive: bool = True) -> float:
-    if key not in cfg[table]:
-        raise InputError(f"{table}.{key} is missing; it is required here")
-    value = number(cfg[table][key], f"{table}.{key}", minimum=0.0 if positive else None)
-    return _in_range(value, f"{table}.{key}", positive)
-
-
-def _in_range(value: float, name: str, positive: bool) -> float:
-    """``value`` if its magnitude is within [SMALLEST, LARGEST] (0 allowed when signed)."""
-    size = abs(value)
-    if size > LARGEST or (size < SMALLEST and (positive or size > 0.0)):
-        window = (f"between {SMALLEST:g} and {LARGEST:g}" if positive else
-                  f"0 or of magnitude between {SMALLEST:g} and {LARGEST:g}")
-        raise InputError(f"{name} = {value!r}: valid is a number {window} (SI units)")
-    return value
-
-
-def _vector(cfg: dict, table: str, key: str, *, positive: bool = False) -> np.ndarray:
-    value = cfg[table].get(key)
-    ok = isinstance(value, list) and len(value) == 3 and all(is_number(v) for v in value)
-    if not ok or (positive and min(value) <= 0):
-        kind = "three numbers > 0" if positive else "three numbers"
-        raise InputError(f"{table}.{key} = {value!r}: valid is [x, y, z], {kind}")
-    for v in value:
-        _in_range(float(v), f"{table}.{key}", positive)
-    return np.array(value, dtype=float)
-
-
-def make_body(cfg: dict, folder: Path) -> shapes.Body:
-    """Build the body of the [body] table."""
-    shape = cfg["body"].get("shape")
-    if shape not in SHAPES:
-        raise InputError(f"body.shape = {shape!r}: valid shapes are {', '.join(SHAPES)}")
-    allowed = {"shape", *SHAPES[shape], *OPTIONAL_BODY.get(shape, ())}
-    for key in cfg["body"]:
-        if key not in allowed:
-            raise InputError(f"body.{key} does not apply to shape {shape!r}; valid keys are "
-                             f"{', '.join(sorted(allowed))}")
-
-    def num(key, positive=True):
-        return _number(cfg, "body", key, positive=positive)
-
-    if shape == "circular_cylinder":
-        return shapes.EllipticCylinder(num("radius"), num("radius"), num("length"))
-    if shape == "elliptic_cylinder":
-        return shapes.EllipticCylinder(num("half_beam"), num("half_height"), num("length"))
-    if shape == "parabolic_cylinder":
-        half_beam, height = num("half_beam"), num("height")
-        return shapes.ConicCylinder(half_beam**2 / height, 0.0, height, num("length"))
-    if shape == "conic_cylinder":
-        return _conic(num("n"), num("m", positive=False), num("height"), num("length"))
-    if shape == "box":
-        beam, height = num("beam"), num("height")
-        radius = number(cfg["body"].get("bilge_radius", 0.0), "body.bilge_radius")
-        if not 0.0 <= radius <= min(beam / 2, height):
-            raise InputError(f"body.bilge_radius = {radius!r}: valid is 0 ≤ r ≤ "
-                             f"min(beam/2, height) = {min(beam / 2, height):g}")
-        return shapes.Box(beam, height, num("length"), radius)
-    if shape == "sphere":
-        r = num("radius")
-        return shapes.Ellipsoid([r, r, r])
-    if shape == "ellipsoid":
-        return shapes.Ellipsoid(_vector(cfg, "body", "semi_axes", positive=True))
-    from floatfoam.bodies import surfaces
-
-    if shape == "implicit":
-        resolution = _resolution(cfg["body"].get("resolution", 96))
-        expression = cfg["body"].get("expression")
-        if not isinstance(expression, str):
-            raise InputError(f"body.expression = {expression!r}: valid is a string F(x, y, z), "
-                             "negative inside the body")
-        return surfaces.implicit_body(expression, _bounds(cfg["body"].get("bounds")),
-                                      resolution)
-    scale = number(cfg["body"].get("scale", 1.0), "body.scale", minimum=0.0)
-    path = cfg["body"].get("path")
-    if not isinstance(path, str):
-        raise InputError(f"body.path = {path!r}: valid is the path of an STL file (a string)")
-    return surfaces.stl_body(folder / path, scale)
-
-
-def _resolution(value) -> int:
-    """body.resolution: points per axis of the implicit surface's grid, within memory."""
-    if is_number(value) and value > MAX_RESOLUTION:
-        need = IMPLICIT_BYTES_PER_POINT * float(value) ** 3 / 2**30
-        raise InputError(f"body.resolution = {value!r}: valid is a whole number from 8 to "
-                         f"{MAX_RESOLUTION} ({MAX_RESOLUTION}³ points take ~2 GiB; {value!r} "
-                         f"would need ~{need:.3g} GiB)")
-    resolution = number(value, "body.resolution", minimum=7, integer=True)
-    return resolution
-
-
-def _bounds(value) -> list:
-    """body.bounds: [[x0, y0, z0], [x1, y1, z1]], numbers."""
-    ok = isinstance(value, list) and len(value) == 2 and all(
-        isinstance(row, list) and len(row) == 3 and all(is_number(v) for v in row)
-        for row in value)
-    if not ok:
-        raise InputError(f"body.bounds = {value!r}: valid is [[x0, y0, z0], [x1, y1, z1]], "
-                         "numbers in m")
-    return value
-
-
-def _conic(n: float, m: float, height: float, length: float) -> shapes.Body:
-    if m < 0:
-        full = -n / m
-        if height > full * (1 + 1e-12):
-            raise InputError(f"body.height = {height:g}: valid for this ellipse (m < 0) is "
-                             f"0 < height ≤ −n/m = {full:g}")
-        if height >= full * (1 - 1e-12):  # the whole ellipse
-            return shapes.EllipticCylinder(n / (2 * math.sqrt(-m)), full / 2, length)
-    return shapes.ConicCylinder(n, m, height, length)
-
-
 def _build(folder: Path, cfg: dict) -> Case:
     body = make_body(cfg, folder)
-    fluid = {k: _number(cfg, "fluid", k) for k in ("rho", "nu", "g")}
+    fluid = {k: table_number(cfg, "fluid", k) for k in ("rho", "nu", "g")}
     depth = cfg["fluid"].get("depth", math.inf)
-    depth = math.inf if depth in (math.inf, "inf") else _number(cfg, "fluid", "depth")
+    depth = math.inf if depth in (math.inf, "inf") else table_number(cfg, "fluid", "depth")
     mass = _mass(cfg, body, fluid["rho"])
-    cog = _vector(cfg, "mass", "cog")
+    cog = table_vector(cfg, "mass", "cog")
     if not body.contains(cog):
         raise InputError(f"mass.cog = {cog.tolist()} is outside the body; valid is a point "
                          "inside it (relative to its geometric centre)")
     if "gyradius" not in cfg["mass"]:
         raise InputError("mass.gyradius is missing; valid is [kx, ky, kz] in m, the radii of "
                          "gyration about axes through G")
-    gyradius = _vector(cfg, "mass", "gyradius", positive=True)
-    release = {k: _number(cfg, "release", k, positive=False) for k in RELEASE_KEYS}
+    gyradius = table_vector(cfg, "mass", "gyradius", positive=True)
+    release = {k: table_number(cfg, "release", k, positive=False) for k in RELEASE_KEYS}
     # one pair of angles for each attitude (degrees from the equilibrium one)
     if not -180.0 < release["heel"] <= 180.0:
         raise InputError(f"release.heel = {release['heel']:g}: valid is −180 < heel ≤ 180 "
@@ -432,7 +298,7 @@ def _build(folder: Path, cfg: dict) -> Case:
     if not -90.0 <= release["trim"] <= 90.0:
         raise InputError(f"release.trim = {release['trim']:g}: valid is −90 ≤ trim ≤ 90 "
                          "(degrees from the equilibrium attitude)")
-    air = {k: _number(cfg, "fluid", k) for k in ("rho_air", "nu_air")}
+    air = {k: table_number(cfg, "fluid", k) for k in ("rho_air", "nu_air")}
     table = cfg.get("case", {})
     text = {k: table.get(k, "") for k in ("title", "description")}
     for key, value in text.items():
@@ -480,10 +346,10 @@ def _mass(cfg: dict, body: shapes.Body, rho: float) -> float:
         raise InputError("[mass] needs exactly one of mass.mass (kg) or mass.density (kg/m³)")
     volume = body.volume()
     if given[0] == "density":
-        density = _number(cfg, "mass", "density")
+        density = table_number(cfg, "mass", "density")
         mass = density * volume
     else:
-        mass = _number(cfg, "mass", "mass")
+        mass = table_number(cfg, "mass", "mass")
         density = mass / volume
     if density >= rho:
         raise InputError(f"mass.{given[0]} = {cfg['mass'][given[0]]!r} makes the body "

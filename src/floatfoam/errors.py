@@ -34,3 +34,43 @@ def number(value, name: str, *, minimum: float | None = None, integer: bool = Fa
         bound = "" if minimum is None else f" > {minimum:g}"
         raise InputError(f"{name} = {value!r}: valid is {kind}{bound}")
     return int(value) if integer else float(value)
+
+
+# Every number of a case lies within these magnitudes (SI units: a body from a micrometre to
+# a thousand kilometres, ν from 1e-12 m²/s): products of a few of them (a volume, an inertia)
+# stay far from float64's overflow and underflow, which a radius of 1e300 reaches.
+SMALLEST, LARGEST = 1e-12, 1e9
+
+
+def table_number(cfg: dict, table: str, key: str, *, positive: bool = True) -> float:
+    """``cfg[table][key]``, a required number within :data:`SMALLEST`–:data:`LARGEST` (> 0
+    when ``positive``); else an InputError naming ``table.key``."""
+    if key not in cfg[table]:
+        raise InputError(f"{table}.{key} is missing; it is required here")
+    value = number(cfg[table][key], f"{table}.{key}", minimum=0.0 if positive else None)
+    return in_range(value, f"{table}.{key}", positive)
+
+
+def in_range(value: float, name: str, positive: bool) -> float:
+    """``value`` if its magnitude is within [SMALLEST, LARGEST] (0 allowed when signed)."""
+    size = abs(value)
+    if size > LARGEST or (size < SMALLEST and (positive or size > 0.0)):
+        window = (f"between {SMALLEST:g} and {LARGEST:g}" if positive else
+                  f"0 or of magnitude between {SMALLEST:g} and {LARGEST:g}")
+        raise InputError(f"{name} = {value!r}: valid is a number {window} (SI units)")
+    return value
+
+
+def table_vector(cfg: dict, table: str, key: str, *, positive: bool = False):
+    """``cfg[table][key]``, three numbers [x, y, z] within :data:`SMALLEST`–:data:`LARGEST`
+    (> 0 when ``positive``), as a float array; else an InputError naming ``table.key``."""
+    import numpy as np
+
+    value = cfg[table].get(key)
+    ok = isinstance(value, list) and len(value) == 3 and all(is_number(v) for v in value)
+    if not ok or (positive and min(value) <= 0):
+        kind = "three numbers > 0" if positive else "three numbers"
+        raise InputError(f"{table}.{key} = {value!r}: valid is [x, y, z], {kind}")
+    for v in value:
+        in_range(float(v), f"{table}.{key}", positive)
+    return np.array(value, dtype=float)

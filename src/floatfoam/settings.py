@@ -7,22 +7,18 @@ number is checked against its range and the relations between numbers are checke
 outer distance, write interval ≤ end time, ω_min < ω_max). Stages read :class:`Settings`,
 never the raw TOML.
 
-A field's range is in its metadata: ``minimum`` (exclusive unless ``closed``), ``maximum``
-(inclusive), ``kind`` (float, int, bool, str, or tuple: a list of names); ``added`` marks a
-field (or a whole table) added after runs were made whose default leaves them as they were,
-``inert`` the value at which a field changes nothing, ``extent`` a field that says only how far
-a run goes (run.end_time: a longer one continues the run, :mod:`floatfoam.foam.extension`);
-:func:`stamped` leaves all three out of a run's stamp.
+A field's range, words and stamp flags, the parsing of a table and a run's stamp of them:
+:mod:`floatfoam.fields`.
 """
 
 from __future__ import annotations
 
-import difflib
 import math
 import os
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 
-from floatfoam.errors import InputError, number
+from floatfoam.errors import InputError
+from floatfoam.fields import parse_table, spec
 
 # Memory of an interFoam run: ~2 kB per cell. Measured with /usr/bin/time -v on serial runs of
 # cylinder_heave (rebuilt interFoam, v1912): peak resident 134.7 MB at 11,280 cells (coarse),
@@ -47,45 +43,6 @@ def max_cells() -> int:
     except (ValueError, OSError):
         memory = 24 * 2**30
     return int(memory // BYTES_PER_CELL)
-
-
-_NONE = object()
-
-
-def _spec(default, *, kind=float, minimum=None, closed=False, maximum=None, doc="",
-          added=False, inert=_NONE, extent=False):
-    """A settings field: its default and the range :func:`_value` checks. ``added``: a field
-    added later, whose default changes nothing that was run before it; ``inert``: a value at
-    which the field changes nothing (as 0 prism layers); ``extent``: a field that says only how
-    far a run goes, not what it computes."""
-    return field(default=default, metadata={"kind": kind, "minimum": minimum, "closed": closed,
-                                            "maximum": maximum, "doc": doc, "added": added,
-                                            "inert": inert, "extent": extent})
-
-
-def stamped(settings) -> dict:
-    """The settings as a run's stamp holds them (``dataclasses.asdict`` without the fields
-    marked ``added`` that are at their default, nor those at their ``inert`` value, nor the
-    ``extent`` ones): a field added with a default that changes nothing must not make every
-    run made before it look as of other settings, nor a later run.end_time a finished run
-    (the run's own end time is in its info.json)."""
-    out = {}
-    for item in fields(settings):
-        value = getattr(settings, item.name)
-        if hasattr(value, "__dataclass_fields__"):
-            inner = stamped(value)
-            if inner or not item.metadata.get("added"):  # an added table at its defaults
-                out[item.name] = inner  # is left out whole
-        elif not ((item.metadata.get("added") and value == item.default)
-                  or _is_inert(value, item.metadata.get("inert", _NONE))
-                  or item.metadata.get("extent")):
-            out[item.name] = value
-    return out
-
-
-def _is_inert(value, inert) -> bool:
-    """``value`` is the field's inert one, of its type too (False is not 0 layers)."""
-    return type(value) is type(inert) and value == inert
 
 
 MESH_POSES = ("release", "equilibrium")
@@ -116,53 +73,53 @@ def time_scheme_coefficient(scheme: str) -> float | None:
 class RunSettings:
     """``[run]``: the CFD run (times in s, distances in m)."""
 
-    end_time: float | None = _spec(None, minimum=0.0, doc="simulated time", extent=True)
+    end_time: float | None = spec(None, minimum=0.0, doc="simulated time", extent=True)
     # in the stamp: it sets the written times, which the adjustable time step lands on (the
     # steps themselves), and the times a run restarts from
-    write_interval: float = _spec(0.1, minimum=0.0,
+    write_interval: float = spec(0.1, minimum=0.0,
                                   doc="s between written fields (the last falls on end_time)")
-    max_courant: float = _spec(0.5, minimum=0.0, maximum=5.0,
+    max_courant: float = spec(0.5, minimum=0.0, maximum=5.0,
                                doc="the largest Courant number the adjustable time step allows")
-    max_alpha_courant: float | None = _spec(None, minimum=0.0, maximum=5.0,
+    max_alpha_courant: float | None = spec(None, minimum=0.0, maximum=5.0,
                                             doc="at the interface (default: max_courant)")
-    max_delta_t: float = _spec(0.005, minimum=0.0,
+    max_delta_t: float = spec(0.005, minimum=0.0,
                                doc="s: the largest time step, at the coarse level")
     # 1: no relaxation, v1912's own default; 0.7 leaves the six-DoF coupling loop unconverged
     # and the lightly damped rolls' ζ 2–10 % short (docs/coupling.md)
-    acceleration_relaxation: float = _spec(1.0, minimum=0.0, maximum=1.0,
+    acceleration_relaxation: float = spec(1.0, minimum=0.0, maximum=1.0,
                                            doc="r: each body acceleration = r·new + "
                                            "(1 − r)·previous, in every coupling iteration")
-    mesh_motion: str = _spec("auto", kind=str, doc="how the mesh follows the body: "
+    mesh_motion: str = spec("auto", kind=str, doc="how the mesh follows the body: "
                              "laplacian (displacementLaplacian, its diffusivity "
                              "run.motion_diffusivity: no distance to set), "
                              "distances (the six-DoF solver: rigid within inner_distance, "
                              "fixed beyond outer_distance), or auto: laplacian on a 2D or "
                              "wedge mesh made at the release unless the body is released to "
                              "turn over, else distances")
-    motion_diffusivity: str = _spec("quadratic", kind=str, added=True,
+    motion_diffusivity: str = spec("quadratic", kind=str, added=True,
                                     doc="the Laplacian's diffusivity in the distance d from "
                                     "the body: quadratic (1/d²) or linear (1/d, which spreads "
                                     "the deformation further from the body); the distances "
                                     "ignore it")
-    inner_distance: float | None = _spec(None, minimum=0.0,
+    inner_distance: float | None = spec(None, minimum=0.0,
                                          doc="m: the distances' mesh moves rigidly with the body "
                                              "within it (default: from the body and the tank, "
                                              "docs/morphing.md)")
-    outer_distance: float | None = _spec(None, minimum=0.0,
+    outer_distance: float | None = spec(None, minimum=0.0,
                                          doc="m: and not at all beyond it (default: 0.9 × the room"
                                              " between the body and the nearest held wall)")
-    solver: str | None = _spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
-    static_body: bool = _spec(False, kind=bool, doc="hold the body still (still-water test)")
-    mesh_pose: str = _spec("release", kind=str, doc="the body's pose the mesh is made at: "
+    solver: str | None = spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
+    static_body: bool = spec(False, kind=bool, doc="hold the body still (still-water test)")
+    mesh_pose: str = spec("release", kind=str, doc="the body's pose the mesh is made at: "
                            "release, or equilibrium (heave releases; moved to the release "
                            "before the first step)")
-    divergence_courant: float = _spec(20.0, minimum=0.0,
+    divergence_courant: float = spec(20.0, minimum=0.0,
                                       doc="a Courant number above it stops the run as diverged")
-    divergence_body_speed: float = _spec(10.0, minimum=0.0,
+    divergence_body_speed: float = spec(10.0, minimum=0.0,
                                          doc="m/s: a body speed above it stops the run as diverged")
     # Crank–Nicolson ψ 0.9 on box_bilge diverges at relaxation 0.7, and at 0.4 the roll gains
     # energy (docs/studies/cases/box_bilge.md); the cases keep Euler
-    time_scheme: str = _spec("Euler", kind=str, doc="the time derivative's scheme: Euler "
+    time_scheme: str = spec("Euler", kind=str, doc="the time derivative's scheme: Euler "
                              "(first order), or \"CrankNicolson ψ\" with 0 ≤ ψ ≤ 1 (second "
                              "order at ψ = 1; any ψ needs the shared fvSolution's "
                              "nAlphaSubCycles 1, which interFoam checks)")
@@ -197,31 +154,31 @@ class RunSettings:
 class GmshSettings:
     """``[mesh.gmsh]``: sizes of the gmsh meshes at the coarse level (meshing.levels)."""
 
-    body_cells: float = _spec(24, minimum=0.0, maximum=2000,
+    body_cells: float = spec(24, minimum=0.0, maximum=2000,
                               doc="cells across the body's smallest dimension on its surface (2D, "
                                   "wedge)")
-    body_cells_3d: float = _spec(12, minimum=0.0, maximum=500, doc="the same in 3D")
-    curvature_cells: float = _spec(48, minimum=0.0, maximum=5000,
+    body_cells_3d: float = spec(12, minimum=0.0, maximum=500, doc="the same in 3D")
+    curvature_cells: float = spec(48, minimum=0.0, maximum=5000,
                                    doc="cells per 2π of the surface's turning, where it turns fast")
     # 1.2: the elliptic section's coarse 2D mesh has 11.0k cells (17.5k at 1.1), and an
     # interFoam step costs ~11 µs per cell on 2 ranks here: 5 roll periods in ~2 min
-    growth: float = _spec(1.2, minimum=1.0, maximum=3.0,
+    growth: float = spec(1.2, minimum=1.0, maximum=3.0,
                           doc="size ratio of neighbouring cells away from the body (2D, wedge)")
-    growth_3d: float = _spec(1.2, minimum=1.0, maximum=3.0, doc="the same in 3D")
+    growth_3d: float = spec(1.2, minimum=1.0, maximum=3.0, doc="the same in 3D")
     # prism layers at the body in 3D (a body given by triangles, or an ellipsoid): their count
     # (left out: TRIANGLE_LAYERS at a body given by triangles, 0 at an exact solid; resolved
     # when the case loads) and their total height in body cells (meshing.domain3d)
-    layers_3d: int | None = _spec(None, kind=int, minimum=0, closed=True, maximum=20, inert=0,
+    layers_3d: int | None = spec(None, kind=int, minimum=0, closed=True, maximum=20, inert=0,
                                   doc="default: 3 at a body given by triangles (stl, "
                                   "implicit), 0 at an exact solid (an ellipsoid takes them "
                                   "when given)")
-    layers_height_3d: float = _spec(1.0, minimum=0.0, maximum=5.0, added=True,
+    layers_height_3d: float = spec(1.0, minimum=0.0, maximum=5.0, added=True,
                                     doc="the prism layers' total height, in body cells")
-    half_3d: bool = _spec(True, kind=bool, added=True,
+    half_3d: bool = spec(True, kind=bool, added=True,
                           doc="mesh half the tank, with a symmetry plane, for a body symmetric "
                               "about x = 0 or y = 0 (found from its shape or triangles) whose "
                               "G and motion keep that plane; false: the whole tank")
-    margin: float = _spec(0.5, minimum=0.0, maximum=50.0,
+    margin: float = spec(0.5, minimum=0.0, maximum=50.0,
                           doc="half-thickness of the core block around the body, × its smallest "
                               "dimension")
 
@@ -229,29 +186,34 @@ class GmshSettings:
         pass
 
 
+def _row_memory(cells: float) -> str:
+    """What one row of ``cells`` O-grid cells alone would need in memory, in words."""
+    return f"{memory_text(cells)} in one row of cells alone"
+
+
 @dataclass(frozen=True)
 class MeshSettings:
     """``[mesh]``: the refinement ratio between levels and the blockMesh O-grid's counts (at the
     coarse level); ``[mesh.gmsh]`` the gmsh meshes'."""
 
-    refinement_ratio: float = _spec(math.sqrt(2.0), minimum=1.0, maximum=4.0,
+    refinement_ratio: float = spec(math.sqrt(2.0), minimum=1.0, maximum=4.0,
                                     doc="r: cell sizes and the largest time step shrink by "
                                         "it from one level to the next")
-    mesher: str = _spec("gmsh", kind=str, doc="gmsh (any body) or ogrid (a circle)")
-    square_half_size: float | None = _spec(None, minimum=0.0,
+    mesher: str = spec("gmsh", kind=str, doc="gmsh (any body) or ogrid (a circle)")
+    square_half_size: float | None = spec(None, minimum=0.0,
                                            doc="m, O-grid: half the side of the square around the "
                                                "circle")
-    cells_side: int = _spec(40, kind=int, minimum=0, maximum=20000,
+    cells_side: int = spec(40, kind=int, minimum=0, maximum=20000, too_many=_row_memory,
                             doc="O-grid: cells along a side of the square")
-    cells_radial: int = _spec(16, kind=int, minimum=0, maximum=20000,
+    cells_radial: int = spec(16, kind=int, minimum=0, maximum=20000, too_many=_row_memory,
                               doc="O-grid: cells from the circle to the square")
-    radial_grading: float = _spec(2.0, minimum=0.0, maximum=1000.0,
+    radial_grading: float = spec(2.0, minimum=0.0, maximum=1000.0,
                                   doc="O-grid: last to first radial cell's size")
-    cells_horizontal: int = _spec(40, kind=int, minimum=0, maximum=20000,
+    cells_horizontal: int = spec(40, kind=int, minimum=0, maximum=20000, too_many=_row_memory,
                                   doc="O-grid: cells from the square to each end")
-    cells_below: int = _spec(30, kind=int, minimum=0, maximum=20000,
+    cells_below: int = spec(30, kind=int, minimum=0, maximum=20000, too_many=_row_memory,
                              doc="O-grid: cells below the square")
-    cells_above: int = _spec(16, kind=int, minimum=0, maximum=20000,
+    cells_above: int = spec(16, kind=int, minimum=0, maximum=20000, too_many=_row_memory,
                              doc="O-grid: cells above the square")
     gmsh: GmshSettings = field(default_factory=GmshSettings)
 
@@ -271,22 +233,22 @@ class MeshSettings:
 class DomainSettings:
     """``[domain]``: the tank around the body (m); absent values scale with the body."""
 
-    half_length: float | None = _spec(None, minimum=0.0,
+    half_length: float | None = spec(None, minimum=0.0,
                                       doc="m: from the body to each end (y in 2D, x in 3D, a "
                                           "wedge's radius; default 20 × the body's largest "
                                           "dimension)")
-    half_width: float | None = _spec(None, minimum=0.0,
+    half_width: float | None = spec(None, minimum=0.0,
                                      doc="m, 3D: to each side (default: half_length)")
-    depth: float | None = _spec(None, minimum=0.0,
+    depth: float | None = spec(None, minimum=0.0,
                                 doc="m of water (default: fluid.depth, else 10 × the body's "
                                     "largest dimension)")
-    air_height: float | None = _spec(None, minimum=0.0,
+    air_height: float | None = spec(None, minimum=0.0,
                                      doc="m of air above the water (default 3 × the body's largest"
                                          " dimension)")
-    band: float | None = _spec(None, minimum=0.0,
+    band: float | None = spec(None, minimum=0.0,
                                doc="m: half-height of the refined band about the free surface "
                                    "(default: where the waterline goes in the first oscillation)")
-    thickness: float | None = _spec(None, minimum=0.0,
+    thickness: float | None = spec(None, minimum=0.0,
                                     doc="m: a 2D slab's (default: the section's length)")
 
     def check(self) -> None:
@@ -298,13 +260,13 @@ class PotentialSettings:
     """``[potential]``: the panel count and the frequencies (ω√(ℓ/g)) of potential flow; absent
     values take the module defaults."""
 
-    panels: int | None = _spec(None, kind=int, minimum=7, maximum=20000,
+    panels: int | None = spec(None, kind=int, minimum=7, maximum=20000,
                                doc="wetted panels (default 64 for a 2D section, 800 in 3D)")
-    omega_min: float | None = _spec(None, minimum=0.0,
+    omega_min: float | None = spec(None, minimum=0.0,
                                     doc="lowest frequency, ω√(ℓ/g) (default 0.05)")
-    omega_max: float | None = _spec(None, minimum=0.0,
+    omega_max: float | None = spec(None, minimum=0.0,
                                     doc="highest frequency, ω√(ℓ/g) (default 2.5)")
-    frequencies: int | None = _spec(None, kind=int, minimum=1, maximum=2000,
+    frequencies: int | None = spec(None, kind=int, minimum=1, maximum=2000,
                                     doc="frequencies between them (default 32)")
 
     def check(self) -> None:
@@ -320,7 +282,7 @@ class MotionSettings:
     holds a model (a roll-only rig: ``free = ["roll"]``, about a fixed axis through G); absent,
     those a body released in a fluid moves in (:func:`floatfoam.dofs.free_dofs`)."""
 
-    free: tuple[str, ...] | None = _spec(None, kind=tuple, added=True,
+    free: tuple[str, ...] | None = spec(None, kind=tuple, added=True,
                                          doc="names among heave, roll, pitch, surge, sway; "
                                          "the released ones must be in it")
 
@@ -349,74 +311,6 @@ class Settings:
 
 TABLES = {"run": RunSettings, "mesh": MeshSettings, "domain": DomainSettings,
           "potential": PotentialSettings, "motion": MotionSettings}
-
-
-def keys(cls) -> list[str]:
-    """The keys a settings table accepts."""
-    return [f.name for f in fields(cls)]
-
-
-def unknown_key(name: str, key: str, valid) -> InputError:
-    """The error for an unknown key: the valid ones and the nearest, if any is near."""
-    valid = sorted(valid)
-    near = difflib.get_close_matches(key, valid, n=1) or [
-        name for name in valid if len(key) > 2 and (name.startswith(key) or key in name)][:1]
-    hint = f" (did you mean {name}.{near[0]}?)" if near else ""
-    return InputError(f"{name}.{key} is unknown{hint}; valid keys in [{name}] are "
-                      f"{', '.join(valid)}")
-
-
-def _value(value, name: str, meta: dict):
-    kind = meta["kind"]
-    if kind is bool:
-        if not isinstance(value, bool):
-            raise InputError(f"{name} = {value!r}: valid is true or false (a TOML boolean)")
-        return value
-    if kind is str:
-        if not isinstance(value, str) or not value:
-            raise InputError(f"{name} = {value!r}: valid is a non-empty string")
-        return value
-    if kind is tuple:
-        if not (isinstance(value, list) and value
-                and all(isinstance(v, str) and v for v in value)):
-            raise InputError(f"{name} = {value!r}: valid is a non-empty list of names, "
-                             f"e.g. [\"heave\", \"roll\"]")
-        return tuple(value)
-    low = meta["minimum"]
-    result = number(value, name, minimum=None if meta["closed"] else low,
-                    integer=kind is int)
-    if meta["closed"] and low is not None and result < low:
-        what = "a whole number" if kind is int else "a number"
-        raise InputError(f"{name} = {value!r}: valid is {what} ≥ {low:g}")
-    high = meta["maximum"]
-    if high is not None and result > high:
-        lo_text = "" if low is None else f"{low:g} {'≤' if meta['closed'] else '<'} "
-        what = "a whole number" if kind is int else "a number"
-        cells = f" ({memory_text(result)} in one row of cells alone)" \
-            if name.startswith("mesh.cells_") else ""
-        raise InputError(f"{name} = {value!r}: valid is {what} {lo_text}x ≤ {high:g}{cells}")
-    return result
-
-
-def parse_table(cls, given, name: str):
-    """The settings ``cls`` of the table ``name`` (a dict from the case file)."""
-    if given is None:
-        given = {}
-    if not isinstance(given, dict):
-        raise InputError(f"[{name}] = {given!r}: valid is a table of {', '.join(keys(cls))}")
-    specs = {f.name: f for f in fields(cls)}
-    values = {}
-    for key, value in given.items():
-        spec = specs.get(key)
-        if spec is None:
-            raise unknown_key(name, key, specs)
-        if key == "gmsh" and cls is MeshSettings:
-            values[key] = parse_table(GmshSettings, value, f"{name}.gmsh")
-        else:
-            values[key] = _value(value, f"{name}.{key}", spec.metadata)
-    settings = cls(**values)
-    settings.check()
-    return settings
 
 
 def parse_settings(cfg: dict) -> Settings:

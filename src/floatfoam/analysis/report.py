@@ -37,11 +37,9 @@ from floatfoam import dofs, layout
 from floatfoam.analysis.compare import Comparison, compare_case, memoir_label, potential_flow
 from floatfoam.analysis.comparison_table import comparison_table, fmt, write_comparison
 from floatfoam.analysis.document import Document
-from floatfoam.analysis.overlay import decay_overlay
-from floatfoam.analysis.plots import plot_decay
+from floatfoam.analysis.report_figures import case_figures, record_figures
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
-from floatfoam.motion import file_unit
 
 # (key of theory_summary, label, unit)
 THEORY_ROWS = (
@@ -118,107 +116,6 @@ def theory_table(summary: TheorySummary) -> tuple[list[str], list[list[str]]]:
     return header, rows
 
 
-def _plots(case, theory, comparison: Comparison, out_dir: Path,
-           sources: Sources | None = None) -> list[tuple[str, str]]:
-    images = []
-    for run in comparison.analyses:
-        scale, unit = file_unit(run.dof)
-        name = f"{case.name}/{run.level}_{run.dof}.png"
-        model = comparison.models.get(run.dof)
-        plot_decay(out_dir / name, run.time, run.value, run.result,
-                   overlay=decay_overlay(case, theory, run.dof, model), scale=scale, unit=unit,
-                   title=f"{case.name}, {run.level} mesh: {run.dof} decay")
-        beside = f" beside {model.label}" if model else ""
-        images.append((name, f"{case.name} {run.level} {run.dof} decay{beside}"))
-        if run.dof == "roll":
-            images += _extinction_plot(case, run, out_dir, scale, unit, sources)
-    return images
-
-
-def _extinction_plot(case, run, out_dir: Path, scale: float, unit: str,
-                     sources: Sources | None = None) -> list:
-    """The roll record's extinction curve (:mod:`floatfoam.analysis.extinction`) beside Ikeda's
-    components and potential flow's wave damping for a 2D section (:func:`_ikeda_lines`), or
-    nothing when the record holds too few half swings for its fit."""
-    from floatfoam.analysis.extinction import extinction_curve
-    from floatfoam.analysis.plots import plot_extinction
-
-    try:
-        curve = extinction_curve(run.result, name=f"{case.name} {run.level}")
-    except InputError:
-        return []
-    lines = _ikeda_lines(case, sources, float(max(curve.start)))
-    name = f"{case.name}/{run.level}_{run.dof}_extinction.png"
-    plot_extinction(out_dir / name, curve, scale=scale, unit=unit, references=lines,
-                    title=f"{case.name}, {run.level} mesh: {run.dof} extinction curve")
-    beside = "; beside Ikeda's components and potential flow" if lines else ""
-    return [(name, f"{case.name} {run.level} {run.dof} extinction curve: decrement per half "
-                   f"swing and equivalent damping ratio against amplitude{beside}")]
-
-
-def _ikeda_lines(case, sources: Sources | None, largest: float) -> list:
-    """ζ against amplitude (rad) of Ikeda's total (friction + eddy + wave, about a fixed axis
-    through G) and of potential flow's wave damping, fixed axis and sway free, for a 2D
-    section whose potential flow the report has; none otherwise."""
-    if sources is None or sources.potential is None or not case.body.is_section:
-        return []
-    import numpy as np
-
-    from floatfoam.damping.ikeda import roll_damping
-    from floatfoam.hydrostatics.theory import equilibrium
-
-    try:
-        potential, eq = sources.potential(case), equilibrium(case)
-        degrees = np.linspace(0.25, min(45.0, np.degrees(largest) * 1.05), 40)
-        results = [roll_damping(case, eq, potential, float(a)) for a in degrees]
-    except InputError:
-        return []
-    angle = np.radians(degrees)
-    lines = [("Ikeda: friction + eddy + wave (fixed axis)", angle,
-              [r.zeta(r.total) for r in results], "k-."),
-             ("potential flow: wave (fixed axis)", angle, [r.zeta(r.wave) for r in results],
-              "k:")]
-    if results[0].wave_zeta_sway_free is not None:
-        lines.append(("potential flow: wave (sway free)", angle,
-                      [results[0].wave_zeta_sway_free] * len(angle), "C2:"))
-    return lines
-
-
-def _figures(doc: Document, case, sources: Sources, out_dir: Path) -> None:
-    """The righting arm GZ(φ) of a case released heeled (``sources.gz``, as ``floatfoam gz``:
-    to 90° by 1°) and the radiation coefficients A(ω), B(ω) of its potential flow
-    (``sources.coefficients``, as ``floatfoam potential --plot``); a line saying why where
-    one cannot be drawn."""
-    images = []
-    heeled = float((getattr(case, "release", None) or {}).get("heel", 0.0) or 0.0) != 0.0
-    if sources.gz is not None and heeled:
-        from floatfoam.hydrostatics.gz import plot_gz
-
-        try:
-            plot_gz(sources.gz(case), out_dir / case.name / "gz.png",
-                    title=f"{case.name}: righting arm")
-            images.append((f"{case.name}/gz.png", f"{case.name}: righting arm GZ against heel"))
-        except (InputError, ValueError, RuntimeError) as err:
-            doc.paragraph(f"GZ curve: not drawn ({err})", note=True)
-    if sources.coefficients is not None:
-        from floatfoam.potential.plot import plot_coefficients
-
-        try:
-            coefficients = sources.coefficients(case)
-            summary = sources.potential(case) if sources.potential else None
-        except (ImportError, InputError, NotImplementedError, RuntimeError) as err:
-            doc.paragraph(f"A(ω), B(ω): not drawn ({str(err).splitlines()[0]})", note=True)
-        else:
-            plot_coefficients(coefficients, out_dir / case.name / "potential.png",
-                              summary=summary, title=f"{case.name}: radiation coefficients")
-            images.append((f"{case.name}/potential.png", f"{case.name}: added mass A(ω) and "
-                                                         "radiation damping B(ω)"))
-    if images:
-        doc.heading("Stability and potential flow", 3)
-        for src, alt in images:
-            doc.image(src, alt)
-
-
 def _write_theory_csv(header, rows, path: Path) -> None:
     with path.open("w", newline="") as handle:
         writer = csv.writer(handle)
@@ -289,12 +186,12 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
                               potential=sources.potential, model=sources.model)
     write_comparison(comparison, case_out)
     _comparison_section(doc, comparison)
-    images = _plots(case, theory, comparison, out_dir, sources)
+    images = record_figures(case, theory, comparison, out_dir, sources)
     if images:
         doc.heading("Decay records", 3)
         for src, alt in images:
             doc.image(src, alt)
-    _figures(doc, case, sources, out_dir)
+    case_figures(doc, case, sources, out_dir)
     if pictures:
         _pictures_section(doc, case.name, sorted({r.level for r in comparison.analyses},
                                                  key=layout.LEVELS.index), build_dir, out_dir)

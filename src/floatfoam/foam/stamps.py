@@ -9,7 +9,7 @@ import hashlib
 import json
 from pathlib import Path
 
-from floatfoam import layout, settings
+from floatfoam import fields, layout, settings
 from floatfoam.case import Case
 from floatfoam.errors import InputError
 from floatfoam.foam import domain
@@ -25,7 +25,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     tables are in), nor its [reference] measurements: adding a measurement must not make a
     finished run look foreign; nor run.end_time, which says only how far the run goes (its
     own is in its info.json: :mod:`floatfoam.foam.extension`)."""
-    stamp = settings.stamped(case.settings)
+    stamp = fields.stamped(case.settings)
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()
                    if k not in ("title", "description", "extends")}
