@@ -243,7 +243,7 @@ def test_a_finished_run_continues_to_a_later_end_time(tmp_path, capsys):
     assert driver.prepare(heave(0.2), "coarse", 1, False, tmp_path) == (run_dir, True, False)
     assert not layout.is_finished(run_dir) and not layout.step_done(run_dir, RECONSTRUCT)
     assert control_times(run_dir) == (0.2, 0.05) and info_end_time(run_dir) == 0.2
-    assert [t for t, _ in timedirs.time_folders(run_dir)] == [0.05, 0.1]
+    assert [t for t, _ in layout.time_folders(run_dir)] == [0.05, 0.1]
     assert "it continues to 0.2 s" in capsys.readouterr().err
 
 
@@ -268,7 +268,7 @@ def test_a_run_finished_past_the_end_time_asked_is_kept(tmp_path, capsys):
     assert "longer than asked" in err and "--force" in err
     assert layout.is_finished(run_dir) and layout.step_done(run_dir, RECONSTRUCT)
     assert control_times(run_dir) == (0.1, 0.05) and info_end_time(run_dir) == 0.1
-    assert [t for t, _ in timedirs.time_folders(run_dir)] == [0.05, 0.1]
+    assert [t for t, _ in layout.time_folders(run_dir)] == [0.05, 0.1]
 
 
 def test_an_unfinished_run_goes_to_the_end_time_asked_past_its_written_times(tmp_path):

@@ -85,7 +85,7 @@ def test_a_parallel_roll_run_opens_in_paraview_and_analyses_as_roll(tmp_path, ca
 
     from floatfoam.case import load_case
     from floatfoam.foam.driver import run_case
-    from floatfoam.foam.timedirs import time_folders
+    from floatfoam.layout import time_folders
 
     case = load_case("elliptic_cylinder_roll", ["run.end_time=2.0", *FAST_STEP])
     run = run_case(case, "coarse", 2, build_dir=tmp_path).run_dir

@@ -23,6 +23,7 @@ import pytest
 from foamlib import FoamFile
 from procutil import locked, processes_in
 
+from floatfoam import layout
 from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.foam import domain, render, runner, timedirs
@@ -80,7 +81,7 @@ def written(run_dir: Path, t: float) -> bool:
     roots = sorted(run_dir.glob("processor[0-9]*")) or [run_dir]
     required = timedirs.required_files(run_dir, moving=True) if run_dir.is_dir() else set()
     for root in roots:
-        times = timedirs.time_folders(root)
+        times = layout.time_folders(root)
         found = [i for i, (value, _) in enumerate(times) if abs(value - t) <= 1e-9]
         if not found:
             return False
@@ -116,7 +117,7 @@ def test_race_sigterm_truncated_time_and_resume(tmp_path):
     assert "Traceback" not in err
     wait_gone(run_dir)
 
-    latest = timedirs.time_folders(run_dir)[-1][1]
+    latest = layout.time_folders(run_dir)[-1][1]
     field = latest / "U"
     field.write_bytes(field.read_bytes()[: field.stat().st_size // 2])  # a write cut short
 

@@ -106,3 +106,16 @@ def mark_done(run: Path, step: str) -> None:
 def is_finished(run: Path) -> bool:
     """Whether the driver marked this run directory finished."""
     return step_done(run, FINISHED)
+
+
+def time_folders(root: Path) -> list[tuple[float, Path]]:
+    """The numeric time folders under ``root`` other than 0, in time order."""
+    found = []
+    for path in Path(root).iterdir() if Path(root).is_dir() else ():
+        try:
+            value = float(path.name)
+        except ValueError:
+            continue
+        if path.is_dir() and value > 0.0:
+            found.append((value, path))
+    return sorted(found)

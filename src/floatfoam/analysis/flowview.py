@@ -25,7 +25,7 @@ import numpy as np
 
 from floatfoam import layout
 from floatfoam.errors import InputError
-from floatfoam.foam.timedirs import time_folders
+from floatfoam.layout import time_folders
 
 SLABS, WEDGES, SOLIDS = ("2d", "ogrid"), ("wedge",), ("3d", "3d-half")
 WATER = "alpha.water"

@@ -26,9 +26,8 @@ from floatfoam.errors import ComputationError, InputError
 from floatfoam.foam import processes
 from floatfoam.foam.logwatch import LogWatcher, Step, euler_angles, fatal_block
 from floatfoam.foam.motionlog import RESUMED, MotionWriter
-from floatfoam.foam.timedirs import time_folders
 from floatfoam.interrupts import SignalInterruptError
-from floatfoam.layout import mark_done, step_done
+from floatfoam.layout import mark_done, step_done, time_folders
 
 FOAM_ENV = {
     "WM_PROJECT_DIR": "/usr/share/openfoam",

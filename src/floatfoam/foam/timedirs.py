@@ -20,7 +20,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from floatfoam.layout import MARKERS
+from floatfoam.layout import MARKERS, time_folders
 
 FOOTER = b"// ************************************************************************* //"
 MOTION_FILES = ("polyMesh/points",)
@@ -28,19 +28,6 @@ SOLVER_STATE = "uniform/sixDoFRigidBodyMotionState"  # the six-DoF motion solver
 # interFoam's mesh motion writes its scale field at start-up only, into the time it starts from:
 # after a restart the folder restarted from holds it and the next one written does not.
 RESTART_ONLY = frozenset({"motionScale"})
-
-
-def time_folders(root: Path) -> list[tuple[float, Path]]:
-    """The numeric time folders under ``root`` other than 0, in time order."""
-    found = []
-    for path in Path(root).iterdir() if Path(root).is_dir() else ():
-        try:
-            value = float(path.name)
-        except ValueError:
-            continue
-        if path.is_dir() and value > 0.0:
-            found.append((value, path))
-    return sorted(found)
 
 
 def _files(folder: Path) -> set[str]:
