@@ -329,9 +329,9 @@ def _resolved_layers(stages: settings.Settings, body: shapes.Body,
     :data:`settings.TRIANGLE_LAYERS` at a body given by triangles and 0 at an exact solid. An
     ellipsoid takes them when given (meshing.domain3d); any other solid is refused them."""
     gmsh = stages.mesh.gmsh
-    triangles = isinstance(body, shapes.MeshBody)
+    triangles = body.given_by_triangles
     if gmsh.layers_3d is not None:
-        if gmsh.layers_3d and not (triangles or isinstance(body, shapes.Ellipsoid)):
+        if gmsh.layers_3d and not body.takes_layers:
             raise InputError(f"mesh.gmsh.layers_3d = {gmsh.layers_3d}: valid only for a body "
                              "given by triangles (body.shape stl or implicit) or an ellipsoid "
                              f"(sphere, ellipsoid); 0 for a {shape}")

@@ -41,6 +41,16 @@ class Body:
     #: the planes x = 0 and y = 0 ("x", "y") the body is mirror symmetric about, for a half
     #: domain in 3D (:func:`floatfoam.meshing.domains.half_plane`); none unless a shape says
     mirror_planes: tuple[str, ...] = ()
+    #: the body is its own triangles (an STL or an implicit surface): meshers take them as they
+    #: are, with prism layers by default (settings.TRIANGLE_LAYERS)
+    given_by_triangles = False
+    #: an exact solid that takes prism layers when a case asks (meshing.surface3d)
+    takes_layers = False
+
+    @property
+    def is_axisymmetric(self) -> bool:
+        """A body of revolution about its vertical (z) axis (a wedge can hold it)."""
+        return False
 
     def surface_mesh(self, resolution=None):
         raise NotImplementedError
@@ -163,6 +173,11 @@ class Ellipsoid(Body):
     """Triaxial ellipsoid of semi-axes (a_x, a_y, a_z); the sphere has them equal."""
 
     mirror_planes = ("x", "y")
+    takes_layers = True
+
+    @property
+    def is_axisymmetric(self) -> bool:
+        return math.isclose(self.axes[0], self.axes[1], rel_tol=1e-12)
 
     def __init__(self, semi_axes):
         self.axes = np.asarray(semi_axes, dtype=float)
@@ -186,6 +201,9 @@ class MeshBody(Body):
     def __init__(self, vertices: np.ndarray, faces: np.ndarray, expression: str | None = None):
         self.vertices, self.faces, self.expression = vertices, faces, expression
         self.lo, self.hi = vertices.min(axis=0), vertices.max(axis=0)
+
+    given_by_triangles = True
+    takes_layers = True
 
     def surface_mesh(self, resolution=None):
         return self.vertices, self.faces

@@ -17,7 +17,6 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam import gmshio
-from floatfoam.bodies import shapes as bodies
 from floatfoam.bodies.geometry import mesh_volume, to_earth
 from floatfoam.meshing import sections
 from floatfoam.meshing.levels import MeshSpec
@@ -63,7 +62,7 @@ def meridian_polyline(body, spec: MeshSpec) -> np.ndarray:
 def body_triangles(body, spec: MeshSpec) -> tuple[np.ndarray, np.ndarray]:
     """Closed, outward-oriented triangle mesh (vertices (N, 3), faces (T, 3)) of ``body`` at
     this level, in the body frame."""
-    if isinstance(body, bodies.MeshBody):
+    if body.given_by_triangles:
         return body.vertices, body.faces
     with gmshio.session("body") as gmsh:
         if body.is_section:

@@ -43,7 +43,6 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam import gmshio
-from floatfoam.bodies import shapes as bodies
 from floatfoam.bodies.surfaces import compile_expression
 from floatfoam.errors import InputError
 from floatfoam.meshing import sections
@@ -78,10 +77,10 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
 
     body = case.body
     surface = None
-    if spec.layers_3d and not isinstance(body, bodies.MeshBody):  # its own gmsh session first
+    if spec.layers_3d and not body.given_by_triangles:  # its own gmsh session first
         surface = solid_surface(body, spec, half)
     with gmshio.session(f"{case.name}-3d", verbosity=VERBOSITY) as gmsh:
-        if isinstance(body, bodies.MeshBody):
+        if body.given_by_triangles:
             vertices, faces = body.vertices, body.faces
             if body.expression is not None:  # an implicit surface: nodes back onto F = 0
                 func = compile_expression(body.expression)
@@ -103,7 +102,7 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
         # superellipsoid's): exact solids only, the layered ellipsoid's remeshed surface too
         # (2 s for ellipsoid_roll's coarse mesh)
         _size_field(gmsh, body_surfaces, spec, tank,
-                    curvature=not isinstance(body, bodies.MeshBody))
+                    curvature=not body.given_by_triangles)
         gmsh.model.mesh.generate(3)
         if surface is not None:  # remeshed on OpenCASCADE's triangles: back onto the solid
             onto_ellipsoid(gmsh, body, body_surfaces, where, layer_heights(spec)[0])

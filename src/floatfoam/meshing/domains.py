@@ -17,7 +17,7 @@ import numpy as np
 from floatfoam.bodies.geometry import mesh_volume
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.immersion import immersed, mesh_immersed, section_immersed
-from floatfoam.meshing import body_surface, sections
+from floatfoam.meshing import body_surface
 from floatfoam.meshing.domain3d import domain_3d
 from floatfoam.meshing.levels import mesh_spec
 from floatfoam.meshing.planar import even_polygon, planar_domain
@@ -30,7 +30,7 @@ def default_kind(case, where: Pose) -> str:
     """The lightest domain that represents the case at this pose."""
     if case.body.is_section and where.trim == 0.0:
         return "2d"
-    if sections.is_axisymmetric(case.body) and where.heel == 0.0 and where.trim == 0.0 \
+    if case.body.is_axisymmetric and where.heel == 0.0 and where.trim == 0.0 \
             and _frees_only(case, ("heave",)):
         return "wedge"
     return "3d-half" if half_plane(case, where) else "3d"

@@ -40,7 +40,7 @@ from scipy.optimize import brentq
 
 from floatfoam import gmshio
 from floatfoam.errors import InputError
-from floatfoam.meshing import body_surface, sections
+from floatfoam.meshing import body_surface
 from floatfoam.meshing.levels import MeshSpec
 from floatfoam.tank import Pose, Tank
 
@@ -341,7 +341,7 @@ def _physical_groups(gmsh, sources, out, tank: Tank, kind: str) -> dict:
 
 def wedge_ready(case, where: Pose) -> None:
     """A wedge models a body of revolution about z, upright: raise otherwise."""
-    if not sections.is_axisymmetric(case.body):
+    if not case.body.is_axisymmetric:
         raise InputError(f"--kind wedge: the body of {case.name} is not a body of revolution "
                          "about z; valid kinds for it are 2d (2D sections) or 3d")
     if where.heel != 0.0 or where.trim != 0.0:

@@ -42,18 +42,12 @@ def add_section(body, x0: float = 0.0) -> list[int]:
     raise TypeError(f"{type(body).__name__} has no 2D section")
 
 
-def is_axisymmetric(body) -> bool:
-    """Whether ``body`` is a body of revolution about its vertical (z) axis."""
-    return isinstance(body, bodies.Ellipsoid) and math.isclose(body.axes[0], body.axes[1],
-                                                               rel_tol=1e-12)
-
-
 def add_meridian(body) -> list[int]:
     """Curves of the meridian of an ellipsoid of revolution about z (semi-axes a, a, c) in the
     (x = r, z) half-plane y = 0, between the keel (0, −c) and the top (0, c)."""
     import gmsh
 
-    if not is_axisymmetric(body):
+    if not body.is_axisymmetric:
         raise TypeError(f"{type(body).__name__} is not a body of revolution about z")
     occ = gmsh.model.occ
     a, c = float(body.axes[0]), float(body.axes[2])

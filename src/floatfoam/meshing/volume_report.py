@@ -21,10 +21,9 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from floatfoam.bodies import shapes as bodies
 from floatfoam.bodies.geometry import mesh_volume
 from floatfoam.hydrostatics.immersion import mesh_immersed, section_immersed
-from floatfoam.meshing import body_surface, sections
+from floatfoam.meshing import body_surface
 from floatfoam.meshing.levels import mesh_spec
 
 
@@ -56,7 +55,7 @@ def discrete_volume_report(case, level: str, equilibrium=None) -> dict:
         total = _shoelace(polygon) * body.length
     else:
         vertices, faces = body_surface.body_triangles(body, spec)
-        kind = "case triangles" if isinstance(body, bodies.MeshBody) else "surface triangles"
+        kind = "case triangles" if body.given_by_triangles else "surface triangles"
         elements = len(faces)
 
         def immersed(z_c):
@@ -69,7 +68,7 @@ def discrete_volume_report(case, level: str, equilibrium=None) -> dict:
         **_compare(body.volume(), total, eq.immersed.volume, immersed, eq.z_c, spec.span),
         "release_heave": case.release["heave"],
     }
-    if sections.is_axisymmetric(body) and eq.heel == 0.0 and eq.trim == 0.0:
+    if body.is_axisymmetric and eq.heel == 0.0 and eq.trim == 0.0:
         report["meridian"] = _meridian(body, spec, eq)
     return report
 
