@@ -54,6 +54,17 @@ def test_the_planes_a_body_is_symmetric_about_are_found_from_its_surface():
     sv, sf = icosphere(3)
     assert mirror_planes(sv, sf) == ("x", "y")
     assert mirror_planes(sv + [0.0025, 0.0, 0.0], sf) == ("y",)
+    # the sphere's triangles turned 17° about z: no vertex mirrors onto another, each lies on
+    # the facets within their sagitta (h²/8R: 0.07 % of the radius at icosphere(4), under the
+    # tolerance's 0.2 %: 1e-3 of the diameter); one vertex pushed out 5 % breaks both planes
+    c, s = np.cos(0.3), np.sin(0.3)
+    turned = icosphere(4)[0] @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]).T
+    faces = icosphere(4)[1]
+    assert mirror_planes(turned, faces) == ("x", "y")
+    bumped = turned.copy()
+    k = int(np.argmax(bumped[:, 0] + 0.5 * bumped[:, 1]))
+    bumped[k] *= 1.05
+    assert mirror_planes(bumped, faces) == ()
 
 
 def test_an_implicit_body_is_symmetric_where_its_expression_is():

@@ -57,28 +57,42 @@ def _implicit_distance(expression: str, points: np.ndarray, mirrored: np.ndarray
 def _surface_distance(vertices: np.ndarray, faces: np.ndarray, points: np.ndarray,
                       tol: float) -> np.ndarray:
     """Each point's distance to the nearest of the triangles, measured exactly only where it
-    could be within ``tol``: a point that coincides with a vertex is at 0; the others are
-    measured against the triangles whose bounding boxes, padded by ``tol``, hold them (a
-    point no box holds is at infinity)."""
+    could be within ``tol``, a chunk of points at a time until one is found farther (the rest
+    are then left at infinity: one point off the surface decides). A point that coincides with
+    a vertex is at 0; the others are measured against the triangles whose centres lie within
+    their largest reach (centre to corner) plus ``tol`` of them, found in a k-d tree."""
     from scipy.spatial import cKDTree
 
     near, _ = cKDTree(vertices).query(points)
     distance = np.where(near <= tol, near, np.inf)
     corners = vertices[faces]
-    lo, hi = corners.min(axis=1) - tol, corners.max(axis=1) + tol
-    for i in np.flatnonzero(distance > tol):
-        p = points[i]
-        inside = np.all((lo <= p) & (p <= hi), axis=1)
-        if inside.any():
-            distance[i] = float(_point_triangle(p, corners[inside]).min())
+    centres = corners.mean(axis=1)
+    reach = float(np.linalg.norm(corners - centres[:, None, :], axis=2).max()) + tol
+    tree = cKDTree(centres)
+    todo = np.flatnonzero(distance > tol)
+    for chunk in np.array_split(todo, max(1, len(todo) // CHUNK)):
+        found = tree.query_ball_point(points[chunk], reach)
+        counts = np.array([len(c) for c in found])
+        if counts.sum():
+            which = np.repeat(chunk, counts)
+            pairs = _point_triangle(points[which], corners[np.concatenate(found).astype(int)])
+            starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+            has = counts > 0
+            distance[chunk[has]] = np.minimum.reduceat(pairs, starts[has])
+        if (distance[chunk] > tol).any():
+            break
     return distance
 
 
+#: points measured together by :func:`_surface_distance` (a few MB of candidate pairs)
+CHUNK = 2000
+
+
 def _point_triangle(p: np.ndarray, tri: np.ndarray) -> np.ndarray:
-    """The distances from point ``p`` to triangles ``tri`` (T, 3, 3): the nearest point of
-    each, on its face, an edge or a corner (Ericson, Real-Time Collision Detection, 5.1.5,
-    written here as the minimum of the face's projection, where it falls inside, and the three
-    edges' segments)."""
+    """The distances from point ``p`` (3,), or from each of points (T, 3), to triangles ``tri``
+    (T, 3, 3): the nearest point of each, on its face, an edge or a corner (Ericson, Real-Time
+    Collision Detection, 5.1.5, written here as the minimum of the face's projection, where it
+    falls inside, and the three edges' segments)."""
     a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
     n = np.cross(b - a, c - a)
     area2 = np.einsum("ij,ij->i", n, n)
