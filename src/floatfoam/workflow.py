@@ -29,10 +29,11 @@ def _stderr(line: str) -> None:
     print(line, file=sys.stderr)
 
 
-def check_study(case, np_: int, runs: list[tuple[str, int, float]], build: Path) -> None:
+def check_study(case, np_: int, runs: list[tuple[str, int, float]], build: Path):
     """Every run of a study (``runs``: :func:`floatfoam.analysis.validation.plan`'s (level,
     time-step divisor, morphing factor)) checked as :func:`floatfoam.foam.driver.check_run`
-    checks one, before the first starts or is submitted. Raises InputError; writes nothing."""
+    checks one, before the first starts or is submitted; returns the case's equilibrium,
+    solved for the checks. Raises InputError; writes nothing."""
     from floatfoam.foam.driver import check_ranks, check_run
     from floatfoam.hydrostatics.theory import equilibrium
 
@@ -41,6 +42,7 @@ def check_study(case, np_: int, runs: list[tuple[str, int, float]], build: Path)
     for level, divisor, factor in runs:
         check_run(case, level, np_, eq, build_dir=build, time_step_divisor=divisor,
                   morphing=factor)
+    return eq
 
 
 def run_study(case, np_: int = 1, *, time_level: str = "medium",
@@ -61,7 +63,6 @@ def run_study(case, np_: int = 1, *, time_level: str = "medium",
     from floatfoam.analysis.validation import plan, study_morphing, validate_case
     from floatfoam.foam.driver import check_ranks, run_case
     from floatfoam.foam.runner import RunError
-    from floatfoam.hydrostatics.theory import equilibrium
 
     check_ranks(np_, None)
     build = build or layout.build_dir()
@@ -70,8 +71,7 @@ def run_study(case, np_: int = 1, *, time_level: str = "medium",
     runs = plan(time_level, morphing)
     failed: list[str] = []
     if run:
-        check_study(case, np_, runs, build)
-        eq = equilibrium(case)
+        eq = check_study(case, np_, runs, build)
         names = [layout.run_name(*item) for item in runs]
         say(f"[validate {case.name}] {len(runs)} runs on {np_} rank(s): {', '.join(names)} "
             "(finished ones are reused, interrupted ones resume)")

@@ -41,7 +41,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from floatfoam import dofs
-from floatfoam.analysis.comparison_table import THEORY, table_row
+from floatfoam.analysis.comparison_table import THEORY, optional_float, table_row
 from floatfoam.analysis.cummins import MODEL, ModelFit, ModelRecord, cummins_model, fit_model
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.analysis.extrema import crossing_reduction
@@ -133,7 +133,7 @@ def _cfd_rows(case, dof, runs, theory, options) -> tuple[list[dict], list[CfdAna
             offset = (float(result.fit.mean_level(result.t_first)) - eq_theory) * scale
             note += f"; mean level {offset:+.3g} {unit} from the theory's equilibrium"
         rows.append(table_row(case.name, dof, source, s["period_mean"], s["period_ci95"],
-                         s["damping_ratio"], s["damping_ratio_ci95"], note))
+                              s["damping_ratio"], s["damping_ratio_ci95"], note))
     return rows, analyses
 
 
@@ -179,7 +179,7 @@ def _theory_rows(case, dof, theory, potential):
     if printed.get(f"{dof}_period") is not None:
         errata = "; ".join(printed.get("errata") or [])
         rows.append(table_row(case.name, dof, "memoir as printed", float(printed[f"{dof}_period"]),
-                         note=f"errata: {errata}" if errata else "formulas right as printed"))
+                              note=f"errata: {errata}" if errata else "formulas right as printed"))
     period = theory.period(dof)
     note = "" if period is not None else f"no oscillation ({theory.dofs[dof].verdict or ''})"
     rows.append(table_row(case.name, dof, THEORY, period, note=note.strip()))
@@ -188,17 +188,14 @@ def _theory_rows(case, dof, theory, potential):
         method = ", ".join(f"{value}{label}" for value, label in
                            ((potential.method, ""), (potential.panels, " panels")) if value)
         rows.append(table_row(case.name, dof, "potential flow", float(flow.period),
-                         zeta=_optional(flow.damping_ratio), note=method))
+                              zeta=optional_float(flow.damping_ratio), note=method))
     if flow is not None and flow.coupled_period is not None:
         partner = dofs.PARTNER[dof]
         rows.append(table_row(case.name, dof, f"potential flow, {partner} free",
-                         float(flow.coupled_period), zeta=_optional(flow.coupled_damping_ratio),
-                         note=f"a free body, as in the CFD ({partner} follows the {dof})"))
+                              float(flow.coupled_period),
+                              zeta=optional_float(flow.coupled_damping_ratio),
+                              note=f"a free body, as in the CFD ({partner} follows the {dof})"))
     return rows
-
-
-def _optional(value):
-    return None if value is None else float(value)
 
 
 def _range(entry) -> list[float] | None:
@@ -217,8 +214,9 @@ def _band_row(case, label, dof, study, keys) -> dict | None:
                                                                        ("ζ", zeta))
                     if b is not None and b[2] is not None)
     return table_row(case.name, label, "CFD fine ± U_num", period and period[0], _range(period),
-                zeta and zeta[0], _range(zeta),
-                "; ".join(filter(None, ("grid and time-step study (floatfoam validate)", ext))))
+                     zeta and zeta[0], _range(zeta),
+                     "; ".join(filter(None, ("grid and time-step study (floatfoam validate)",
+                                             ext))))
 
 
 def _first_cycle_rows(case, dof, analyses, reference, study, model: Callable | None,
@@ -242,26 +240,26 @@ def _first_cycle_rows(case, dof, analyses, reference, study, model: Callable | N
             notes.append(f"potential flow, {label}: not computed ({err})")
         else:
             rows.append(table_row(case.name, label, FIRST_CYCLES_MODEL,
-                             r.first_period, zeta=r.damping_ratio,
-                             note=f"first trough {r.first_trough * scale:.4g} {unit}; "
+                                  r.first_period, zeta=r.damping_ratio,
+                                  note=f"first trough {r.first_trough * scale:.4g} {unit}; "
                                   "decay-model --model cummins --nonlinear-restoring"))
     for run in analyses:
         try:
             r = first_cycles(run.time, run.value, run.result, run.settled)
         except ValueError as err:
             rows.append(table_row(case.name, label, f"CFD {run.level}",
-                             note=f"analysis failed: {err}"))
+                                  note=f"analysis failed: {err}"))
             continue
         rows.append(table_row(case.name, label, f"CFD {run.level}", r.first_period,
-                         zeta=r.damping_ratio,
-                         note=f"first trough {r.first_trough * scale:.4g} {unit}"))
+                              zeta=r.damping_ratio,
+                              note=f"first trough {r.first_trough * scale:.4g} {unit}"))
     band = _band_row(case, label, dof, study, ("first_period", "first_damping_ratio"))
     rows += [band] if band else []
     notes = [f"first trough {trough[0] * scale:.4g} {unit}"
              + (f" ± {trough[1] * scale:.2g}" if trough[1] else "")] if trough else []
     sources = sorted({e[2] for e in (period, zeta, trough) if e is not None and e[2]})
     rows.append(table_row(case.name, label, "reference", period and period[0], _range(period),
-                     zeta and zeta[0], _range(zeta), "; ".join(notes + sources)))
+                          zeta and zeta[0], _range(zeta), "; ".join(notes + sources)))
     _relative_differences(rows, FIRST_CYCLES_MODEL)
     return rows
 
@@ -277,7 +275,7 @@ def _reference_row(case, dof, reference, window: float | None = None,
 
     sources = sorted({e[2] for e in (period, zeta) if e is not None and e[2]})
     return table_row(case.name, dof, "reference", period[0] if period else None, _range(period),
-                zeta[0] if zeta else None, _range(zeta), "; ".join(sources))
+                     zeta[0] if zeta else None, _range(zeta), "; ".join(sources))
 
 
 def _relative_differences(rows: list[dict], model: str = MODEL) -> None:
@@ -332,7 +330,7 @@ def _model_row(case, dof: str, record: ModelRecord | str, options: dict,
     span = f"fitted over {span}, as the CFD's record" if window else \
         f"fitted over {span} (no CFD record to match)"
     return table_row(case.name, dof, MODEL, s["period_mean"], zeta=s["damping_ratio"],
-                note=f"T_n {s['natural_period']:.4g} s; {span}; {record.note()}")
+                     note=f"T_n {s['natural_period']:.4g} s; {span}; {record.note()}")
 
 
 def compare_case(case, *, build_dir: str | Path, theory: TheorySummary | None = None,

@@ -21,6 +21,11 @@ CSV_FIELDS = ("case", "dof", "source", "period", "period_lo", "period_hi", "damp
 THEORY = "linear theory (exact)"
 
 
+def optional_float(value) -> float | None:
+    """A row's number, or None where there is none."""
+    return None if value is None else float(value)
+
+
 def table_row(case, dof, source, period=None, period_ci=None, zeta=None, zeta_ci=None, note=""):
     return {"case": case, "dof": dof, "source": source, "period": period,
             "period_ci": period_ci, "damping_ratio": zeta, "damping_ci": zeta_ci,

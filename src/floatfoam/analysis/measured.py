@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam import dofs
-from floatfoam.analysis.comparison_table import table_row
+from floatfoam.analysis.comparison_table import optional_float, table_row
 from floatfoam.analysis.decay import DecayResult, analyse_decay
 from floatfoam.errors import InputError
 from floatfoam.motion import file_unit
@@ -84,12 +84,8 @@ def reference_entry(reference: dict, key: str) -> tuple[float, float | None, str
         if value is None:
             raise InputError(f"reference.{key} has no 'value'; valid is a number or a table "
                              "with value, uncertainty, source")
-        return float(value), _optional(entry.get("uncertainty")), str(entry.get("source", ""))
+        return float(value), optional_float(entry.get("uncertainty")), str(entry.get("source", ""))
     return float(entry), None, ""
-
-
-def _optional(value):
-    return None if value is None else float(value)
 
 
 def record_fit(case, dof: str, window: float | None = None, options: dict | None = None
@@ -118,6 +114,6 @@ def record_fit(case, dof: str, window: float | None = None, options: dict | None
         extent = f"its first {span:.3g} s, as the CFD's record"
     s = result.summary()
     return table_row(case.name, dof, "reference", s["period_mean"], s["period_ci95"],
-                s["damping_ratio"], s["damping_ratio_ci95"],
-                f"{what}, {extent}; {s['n_cycles']:.2g} cycles; 95 % interval of the fit "
-                "on this one record")
+                     s["damping_ratio"], s["damping_ratio_ci95"],
+                     f"{what}, {extent}; {s['n_cycles']:.2g} cycles; 95 % interval of the fit "
+                     "on this one record")

@@ -22,8 +22,7 @@ def mirror_planes(vertices: np.ndarray, faces: np.ndarray, expression: str | Non
     """The planes x = 0 and y = 0 (as "x", "y") the body is mirror symmetric about, in its
     own frame. A body given by an implicit ``expression`` F is symmetric when F takes the same
     value at each vertex and its mirror image (to the tolerance, as a distance: the change over
-    |∇F|); one given by triangles
-    alone when each mirrored vertex lies on its triangles (within
+    |∇F|); one given by triangles alone when each mirrored vertex lies on its triangles (within
     :data:`SYMMETRY_TOLERANCE` × its smallest extent)."""
     extent = vertices.max(axis=0) - vertices.min(axis=0)
     tol = SYMMETRY_TOLERANCE * float(extent.min())
@@ -184,6 +183,13 @@ def corner_normals(vertices: np.ndarray, faces: np.ndarray, feature_angle: float
             ring = np.array(around[int(vertex)])
             smooth = ring[unit[ring] @ unit[t] >= cos_limit]
             normals[t, k] = weighted[smooth].sum(axis=0)
-    if plane is not None:
-        normals[..., plane] = np.where(corners[..., plane] == 0.0, 0.0, normals[..., plane])
-    return normals / np.maximum(np.linalg.norm(normals, axis=2), 1e-300)[:, :, None]
+    normals /= np.maximum(np.linalg.norm(normals, axis=2), 1e-300)[:, :, None]
+    return normals if plane is None else into_plane(normals, corners, plane)
+
+
+def into_plane(normals: np.ndarray, corners: np.ndarray, plane: int) -> np.ndarray:
+    """Unit corner normals (T, 3, 3) with the component across the plane ``plane`` = 0 (axis
+    index) removed where the corner (``corners``, the same shape) lies in that plane."""
+    laid = normals.copy()
+    laid[..., plane] = np.where(corners[..., plane] == 0.0, 0.0, laid[..., plane])
+    return laid / np.maximum(np.linalg.norm(laid, axis=2), 1e-300)[:, :, None]

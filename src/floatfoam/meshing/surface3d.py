@@ -69,23 +69,23 @@ def solid_surface(body, spec: MeshSpec, half: str | None) -> tuple[np.ndarray, n
 
 
 def half_surface(vertices: np.ndarray, faces: np.ndarray, half: str, spec: MeshSpec
-                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """A symmetric body's triangles on the side ``half`` ≥ 0 (:func:`floatfoam.bodies.mirror
     .clip_half`), and the normals its prism layers take: None (gmsh's own, as in the whole
     tank) where the surface meets the plane square to it, as a prism-shaped hull does; else
     per triangle corner (:func:`floatfoam.bodies.mirror.corner_normals`, lying in the plane
     at its edge there, where gmsh's, from one side only, would lean out of it)."""
-    from floatfoam.bodies.mirror import clip_half, corner_normals
+    from floatfoam.bodies.mirror import clip_half, corner_normals, into_plane
 
     k = "xy".index(half)
     vertices, faces = clip_half(vertices, faces, k)
     if not spec.layers_3d:
         return vertices, faces, None
     normals = corner_normals(vertices, faces, math.radians(FEATURE_ANGLE))
-    rim = vertices[faces][..., k] == 0.0
-    if float(np.abs(normals[..., k][rim]).max(initial=0.0)) < 1e-9:
+    corners = vertices[faces]
+    if float(np.abs(normals[..., k][corners[..., k] == 0.0]).max(initial=0.0)) < 1e-9:
         return vertices, faces, None
-    return vertices, faces, corner_normals(vertices, faces, math.radians(FEATURE_ANGLE), k)
+    return vertices, faces, into_plane(normals, corners, k)
 
 
 def ellipsoid_normals(body, vertices: np.ndarray) -> np.ndarray:
