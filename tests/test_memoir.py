@@ -190,3 +190,16 @@ def test_density_ratio_must_float(density_ratio):
 def test_draft_must_stay_inside_a_closed_conic():
     with pytest.raises(InputError, match="draft"):
         memoir.conic_cylinder(2.0, -1.0, 2.0, 0.5, 0.5)
+
+
+def test_each_shape_says_its_memoir_family():
+    from floatfoam.bodies import shapes
+
+    assert shapes.EllipticCylinder(0.5, 0.5, 2.0).memoir_family == ("circle", 0.5)
+    # the ellipse as the memoir's conic: n = 2b²/c, m = −b²/c²
+    assert shapes.EllipticCylinder(1.0, 0.5, 2.0).memoir_family == ("conic", 4.0, -4.0)
+    assert shapes.ConicCylinder(0.3, 0.2, 1.0, 2.0).memoir_family == ("conic", 0.3, 0.2)
+    assert shapes.Ellipsoid([0.4, 0.4, 0.4]).memoir_family == ("sphere", 0.4)
+    assert shapes.Ellipsoid([0.4, 0.4, 0.6]).memoir_family == ("revolution", 0.4, 0.6)
+    assert shapes.Ellipsoid([0.4, 0.5, 0.6]).memoir_family is None
+    assert shapes.Box(1.0, 0.5, 2.0).memoir_family is None

@@ -52,6 +52,14 @@ class Body:
         """A body of revolution about its vertical (z) axis (a wedge can hold it)."""
         return False
 
+    @property
+    def memoir_family(self) -> tuple | None:
+        """Which of Le Barbier's (1817) families the body is, with its parameters:
+        ("circle", a) the circular cylinder of radius a, ("conic", n, m) the cylinder on
+        y² = n x + m x² (x up from the vertex), ("sphere", a), ("revolution", a, c) the
+        ellipsoid of revolution about z of semi-axes a, a, c; None outside them."""
+        return None
+
     def surface_mesh(self, resolution=None):
         raise NotImplementedError
 
@@ -96,6 +104,13 @@ class EllipticCylinder(SectionBody):
         self.lo = np.array([-length / 2, -half_beam, -half_height])
         self.hi = -self.lo
 
+    @property
+    def memoir_family(self) -> tuple:
+        """The circle ("circle", b) when b = c, else the ellipse as a conic ("conic", n, m)."""
+        if self.b == self.c:
+            return ("circle", self.b)
+        return ("conic", 2 * self.b**2 / self.c, -(self.b**2) / self.c**2)
+
     def section_polygon(self, resolution=None):
         t = np.linspace(0.0, 2 * np.pi, resolution or SECTION_POINTS, endpoint=False)
         return np.column_stack([self.b * np.sin(t), -self.c * np.cos(t)])
@@ -119,6 +134,10 @@ class ConicCylinder(SectionBody):
         self.half_beam = self.half_width(widest)
         self.lo = np.array([-length / 2, -self.half_beam, -height / 2])
         self.hi = np.array([length / 2, self.half_beam, height / 2])
+
+    @property
+    def memoir_family(self) -> tuple:
+        return ("conic", self.n, self.m)
 
     def half_width(self, x):
         return np.sqrt(np.maximum(self.n * x + self.m * x * x, 0.0))
@@ -178,6 +197,14 @@ class Ellipsoid(Body):
     @property
     def is_axisymmetric(self) -> bool:
         return math.isclose(self.axes[0], self.axes[1], rel_tol=1e-12)
+
+    @property
+    def memoir_family(self) -> tuple | None:
+        """("sphere", a) or ("revolution", a, c) when a_x = a_y (exactly), else None."""
+        if self.axes[0] != self.axes[1]:
+            return None
+        a, c = self.axes[0], self.axes[2]
+        return ("sphere", a) if a == c else ("revolution", a, c)
 
     def __init__(self, semi_axes):
         self.axes = np.asarray(semi_axes, dtype=float)

@@ -10,6 +10,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -19,28 +20,47 @@ from floatfoam.bodies.geometry import rotation
 from floatfoam.hydrostatics.immersed_part import Immersed, nothing_immersed
 
 
+@functools.singledispatch
 def for_body(body, z_c: float, heel: float, trim: float) -> Immersed | None:
     """The exact immersed part of ``body`` at this attitude where a closed form is known,
     else None: elliptic cylinders at any heel (no trim), conic cylinders and boxes upright,
-    ellipsoids at any attitude."""
-    if isinstance(body, shapes.EllipticCylinder):
-        return None if trim != 0.0 else ellipse_section(body.b, body.c, body.length, z_c, heel)
-    if isinstance(body, shapes.Ellipsoid):
-        return ellipsoid(body.axes, z_c, heel, trim)
+    ellipsoids at any attitude. Each shape registers its own; other bodies have none."""
+    return None
+
+
+@for_body.register(shapes.EllipticCylinder)
+def _elliptic_cylinder(body, z_c: float, heel: float, trim: float) -> Immersed | None:
+    return None if trim != 0.0 else ellipse_section(body.b, body.c, body.length, z_c, heel)
+
+
+@for_body.register(shapes.Ellipsoid)
+def _ellipsoid(body, z_c: float, heel: float, trim: float) -> Immersed | None:
+    return ellipsoid(body.axes, z_c, heel, trim)
+
+
+@for_body.register(shapes.ConicCylinder)
+def _conic_cylinder(body, z_c: float, heel: float, trim: float) -> Immersed | None:
     if heel != 0.0 or trim != 0.0:
         return None
-    if isinstance(body, shapes.ConicCylinder):
-        depth = min(max(body.h / 2 - z_c, 0.0), body.h)
-        i0, i1, w = conic_integrals(body.n, body.m, depth)
-        full = depth >= body.h
-    elif isinstance(body, shapes.Box):
-        depth = min(max(body.height / 2 - z_c, 0.0), body.height)
-        i0, i1, w = box_integrals(body.beam, body.r, depth)
-        full = depth >= body.height
-    else:
+    depth = min(max(body.h / 2 - z_c, 0.0), body.h)
+    i0, i1, w = conic_integrals(body.n, body.m, depth)
+    return _upright(body, i0, i1, w, full=depth >= body.h, z_c=z_c)
+
+
+@for_body.register(shapes.Box)
+def _box(body, z_c: float, heel: float, trim: float) -> Immersed | None:
+    if heel != 0.0 or trim != 0.0:
         return None
+    depth = min(max(body.height / 2 - z_c, 0.0), body.height)
+    i0, i1, w = box_integrals(body.beam, body.r, depth)
+    return _upright(body, i0, i1, w, full=depth >= body.height, z_c=z_c)
+
+
+def _upright(body, i0: float, i1: float, w: float, *, full: bool, z_c: float) -> Immersed:
+    """The upright prism of ``body`` from its half-section integrals (no waterplane when
+    fully submerged)."""
     if full:
-        w = 0.0  # fully submerged: no waterplane
+        w = 0.0
     return upright_section(2 * i0, 2 * i1, w, body.length, body.keel_z, z_c)
 
 

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 
-from floatfoam.bodies.shapes import ConicCylinder, Ellipsoid, EllipticCylinder
 from floatfoam.hydrostatics import memoir
 from floatfoam.hydrostatics import printed as pr
 from floatfoam.hydrostatics import printed_ellipsoid as pe
@@ -35,25 +34,17 @@ def memoir_values(case, *, kg: float, draft: float) -> dict:
     k_roll = float(case.gyradius[0])
     physics = {"rho": case.rho, "g": case.g}
     ratio = case.mass / (case.rho * body.volume())
-    if isinstance(body, EllipticCylinder):
-        if body.b == body.c:
-            out = memoir.circular_cylinder(body.b, ratio, kg, k_roll, length=body.length,
-                                           **physics)
-        else:
-            n, m = 2 * body.b**2 / body.c, -(body.b**2) / body.c**2
-            out = memoir.conic_cylinder(n, m, draft, kg, k_roll,
-                                        length=body.length, **physics)
-    elif isinstance(body, ConicCylinder):
-        out = memoir.conic_cylinder(body.n, body.m, draft, kg, k_roll,
-                                    length=body.length, **physics)
-    elif isinstance(body, Ellipsoid) and body.axes[0] == body.axes[1]:
-        a, c = body.axes[0], body.axes[2]
-        if a == c:
+    match body.memoir_family:
+        case ("circle", a):
+            out = memoir.circular_cylinder(a, ratio, kg, k_roll, length=body.length, **physics)
+        case ("conic", n, m):
+            out = memoir.conic_cylinder(n, m, draft, kg, k_roll, length=body.length, **physics)
+        case ("sphere", a):
             out = memoir.sphere(a, ratio, kg, k_roll, **physics)
-        else:
+        case ("revolution", a, c):
             out = memoir.ellipsoid_of_revolution(a, c, ratio, kg, k_roll, **physics)
-    else:
-        return {}
+        case _:
+            return {}
     values = {ours: out[theirs] for ours, theirs in KEYS.items() if theirs in out}
     values["source"] = out.get("source")
     values["reference"] = out.get("reference")
@@ -78,18 +69,17 @@ def memoir_printed_values(case, *, kg: float, draft: float) -> dict:
         return {}
     args = {"kg": kg, "gyradius": float(case.gyradius[0]), "mass": case.mass,
             "rho": case.rho, "g": case.g}
-    if isinstance(body, EllipticCylinder) and body.b == body.c:
-        out = _circle(body.b, draft, length=body.length, **args)
-    elif isinstance(body, EllipticCylinder):
-        out = _conic(2 * body.b**2 / body.c, -(body.b**2) / body.c**2, draft,
-                     length=body.length, **args)
-    elif isinstance(body, ConicCylinder):
-        out = _conic(body.n, body.m, draft, length=body.length, **args)
-    elif isinstance(body, Ellipsoid) and body.axes[0] == body.axes[1]:
-        a, c = float(body.axes[0]), float(body.axes[2])
-        out = _sphere(a, draft, **args) if a == c else _revolution(a, c, draft, **args)
-    else:
-        return {}
+    match body.memoir_family:
+        case ("circle", a):
+            out = _circle(a, draft, length=body.length, **args)
+        case ("conic", n, m):
+            out = _conic(n, m, draft, length=body.length, **args)
+        case ("sphere", a):
+            out = _sphere(float(a), draft, **args)
+        case ("revolution", a, c):
+            out = _revolution(float(a), float(c), draft, **args)
+        case _:
+            return {}
     out["GM_roll"] = out["KG_limit_roll"] - kg
     out["verdict_roll"] = verdict(out["GM_roll"], body.size)
     omega2_roll = out.pop("omega2_roll")

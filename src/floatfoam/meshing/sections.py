@@ -15,6 +15,7 @@ two tangents meet (Piegl & Tiller 1997, The NURBS Book, §7.3).
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -26,20 +27,23 @@ def add_section(body, x0: float = 0.0) -> list[int]:
     """Curves of ``body``'s section in the plane x = x0, in counter-clockwise order."""
     import gmsh
 
-    occ = gmsh.model.occ
-    if isinstance(body, bodies.EllipticCylinder):
-        b, c = body.b, body.c
-        if b == c:
-            return [occ.addCircle(x0, 0.0, 0.0, b, zAxis=[1, 0, 0], xAxis=[0, 1, 0])]
-        # OpenCASCADE wants r1 ≥ r2 along its x-axis; both choices run counter-clockwise
-        major = [0, 1, 0] if b > c else [0, 0, 1]
-        return [occ.addEllipse(x0, 0.0, 0.0, max(b, c), min(b, c), zAxis=[1, 0, 0],
-                               xAxis=major)]
-    if isinstance(body, bodies.Box):
-        return _box(occ, body, x0)
-    if isinstance(body, bodies.ConicCylinder):
-        return _conic(occ, body, x0)
+    return _section(body, gmsh.model.occ, x0)
+
+
+@functools.singledispatch
+def _section(body, occ, x0: float) -> list[int]:
+    """The section's curves, from the builder its shape registers; other bodies have none."""
     raise TypeError(f"{type(body).__name__} has no 2D section")
+
+
+@_section.register(bodies.EllipticCylinder)
+def _ellipse(body: bodies.EllipticCylinder, occ, x0: float) -> list[int]:
+    b, c = body.b, body.c
+    if b == c:
+        return [occ.addCircle(x0, 0.0, 0.0, b, zAxis=[1, 0, 0], xAxis=[0, 1, 0])]
+    # OpenCASCADE wants r1 ≥ r2 along its x-axis; both choices run counter-clockwise
+    major = [0, 1, 0] if b > c else [0, 0, 1]
+    return [occ.addEllipse(x0, 0.0, 0.0, max(b, c), min(b, c), zAxis=[1, 0, 0], xAxis=major)]
 
 
 def add_meridian(body) -> list[int]:
@@ -67,14 +71,12 @@ def add_solid(body) -> int:
     """``body`` as an OpenCASCADE volume in its own frame; returns the volume tag."""
     import gmsh
 
-    occ = gmsh.model.occ
-    if isinstance(body, bodies.Ellipsoid):
-        axes = [float(a) for a in body.axes]
-        if axes[0] == axes[1] == axes[2]:
-            return occ.addSphere(0.0, 0.0, 0.0, axes[0])
-        tag = occ.addSphere(0.0, 0.0, 0.0, 1.0)
-        occ.dilate([(3, tag)], 0.0, 0.0, 0.0, *axes)
-        return tag
+    return _solid(body, gmsh.model.occ)
+
+
+@functools.singledispatch
+def _solid(body, occ) -> int:
+    """A section extruded along x, or the solid its shape registers; other bodies have none."""
     if body.is_section:
         loop = occ.addCurveLoop(add_section(body, -body.length / 2))
         face = occ.addPlaneSurface([loop])
@@ -83,7 +85,19 @@ def add_solid(body) -> int:
     raise TypeError(f"{type(body).__name__} has no OpenCASCADE solid; use its triangles")
 
 
-def _box(occ, body: bodies.Box, x0: float) -> list[int]:
+@_solid.register(bodies.Ellipsoid)
+def _ellipsoid(body: bodies.Ellipsoid, occ) -> int:
+    """A sphere, or the unit sphere dilated by the semi-axes."""
+    axes = [float(a) for a in body.axes]
+    if axes[0] == axes[1] == axes[2]:
+        return occ.addSphere(0.0, 0.0, 0.0, axes[0])
+    tag = occ.addSphere(0.0, 0.0, 0.0, 1.0)
+    occ.dilate([(3, tag)], 0.0, 0.0, 0.0, *axes)
+    return tag
+
+
+@_section.register(bodies.Box)
+def _box(body: bodies.Box, occ, x0: float) -> list[int]:
     hb, hd, r = body.beam / 2, body.height / 2, body.r
 
     def point(y, z):
@@ -106,7 +120,8 @@ def _box(occ, body: bodies.Box, x0: float) -> list[int]:
     ]
 
 
-def _conic(occ, body: bodies.ConicCylinder, x0: float) -> list[int]:
+@_section.register(bodies.ConicCylinder)
+def _conic(body: bodies.ConicCylinder, occ, x0: float) -> list[int]:
     n, m, h = body.n, body.m, body.h
     w = float(body.half_width(h))
     z0 = -h / 2  # the vertex (keel) in the body frame

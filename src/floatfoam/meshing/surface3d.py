@@ -7,6 +7,7 @@ normals (:func:`ellipsoid_normals`) and its remeshed nodes put back onto it
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -25,15 +26,21 @@ FEATURE_ANGLE = 20.0  # degrees: sharper turns between triangles stay edges (pon
 VERBOSITY = 1  # gmsh messages: 1 errors only; 4 to see where the time goes
 
 
+@functools.singledispatch
 def solid_surface(body, spec: MeshSpec, half: str | None) -> tuple[np.ndarray, np.ndarray]:
     """An ellipsoid's surface as OpenCASCADE meshes it at the 3D sizes (h₀, finer where it
     turns fast, as in :func:`_solid_body`), with ``half`` only its half ``half`` ≥ 0 (the
-    cut's nodes exactly on the plane): (vertices, outward faces), body frame."""
+    cut's nodes exactly on the plane): (vertices, outward faces), body frame. Only the
+    ellipsoid registers one."""
+    raise TypeError(f"prism layers at a {type(body).__name__}: only at an ellipsoid or "
+                    "a body given by triangles")
+
+
+@solid_surface.register(bodies.Ellipsoid)
+def _ellipsoid_surface(body: bodies.Ellipsoid, spec: MeshSpec, half: str | None
+                       ) -> tuple[np.ndarray, np.ndarray]:
     from floatfoam.meshing.body_surface import size_options
 
-    if not isinstance(body, bodies.Ellipsoid):
-        raise TypeError(f"prism layers at a {type(body).__name__}: only at an ellipsoid or "
-                        "a body given by triangles")
     with gmshio.session("surface", verbosity=VERBOSITY) as gmsh:
         occ = gmsh.model.occ
         solid = sections.add_solid(body)
