@@ -19,8 +19,8 @@ import time
 
 from floatfoam.case import load_case
 from floatfoam.foam.driver import run_case
-from floatfoam.foam.render import end_time_of
 from floatfoam.layout import ROOT, build_dir
+from floatfoam.plan.release import end_time_of
 
 # the 3D cases: ~0.3 s of wall per 1.1 ms step on 2 ranks (ellipsoid_roll, half domain), ~0.6 s
 # per step (stl_pontoon, 155,916 tetrahedra in the whole tank); superellipsoid_buoy as the pontoon
@@ -52,7 +52,7 @@ def main() -> int:
                 log = (result.run_dir / "log.interFoam").read_text()
                 steps = sum(1 for line in log.splitlines() if line.startswith("Time = "))
                 rows.append({"case": name, "level": level, "ranks": ranks,
-                             "mesh": result.info.get("mesh"), "cells": result.info["cells"],
+                             "mesh": result.info.mesh, "cells": result.info.cells,
                              "steps": steps, "simulated_s": end, "wall_s": round(wall, 1),
                              "wall_per_simulated_s": round(wall / end, 1),
                              "record_s": end_time_of(base)})

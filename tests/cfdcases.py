@@ -23,7 +23,7 @@ def cfd(name, tmp_path, overrides=()):
     case = load_case(name, list(overrides))
     result = run_case(case, "coarse", 2, build_dir=tmp_path)
     motion = read_motion(result.motion_csv)
-    assert motion["time"][-1] == pytest.approx(result.info["end_time"], abs=1e-6)
+    assert motion["time"][-1] == pytest.approx(result.info.end_time, abs=1e-6)
     for column in ("z", "roll", "y"):
         assert np.all(np.isfinite(motion[column]))
     return case, theory_summary(case), motion, result.info

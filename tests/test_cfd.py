@@ -61,7 +61,7 @@ def test_cylinder_heave_coarse_decays_with_added_mass(tmp_path):
     cummins = analyse_decay(series["time"], series["z"]).summary()["period_mean"]
     assert decay["period_mean"] == pytest.approx(cummins, rel=0.03)
     # The amplitude decays every half cycle (radiated waves + viscosity; no energy source).
-    z_eq = result.info["z_G_equilibrium"]
+    z_eq = result.info.z_G_equilibrium
     amplitudes = swings(t, z, z_eq)
     assert len(amplitudes) >= 4
     assert all(b < a for a, b in zip(amplitudes, amplitudes[1:], strict=False))

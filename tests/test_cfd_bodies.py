@@ -58,14 +58,14 @@ def test_section_heave(tmp_path, name):
     mesh; 3 % is the issue's bound, held with room."""
     case, theory, motion, info = cfd(name, tmp_path,
                                      [f"run.end_time={HEAVE_RECORDS[name]}", *FAST_STEP])
-    assert info["mesh"] == "2d"
+    assert info.mesh == "2d"
     series = cummins(case)
     expected = early_period(series["time"], series["z"])
     assert early_period(motion["time"], motion["z"]) == pytest.approx(expected, rel=0.03)
     # The body settles in a finite tank whose level rises by A_wp·release/(2·half_length)
     # (0.25 mm for the ellipse) as it sinks back: the tail's mean within 1 % of the draft.
     tail = motion["time"] > motion["time"][-1] - 1.0
-    assert np.mean(motion["z"][tail]) == pytest.approx(info["z_G_equilibrium"],
+    assert np.mean(motion["z"][tail]) == pytest.approx(info.z_G_equilibrium,
                                                        abs=0.01 * theory.draft)
 
 
@@ -107,7 +107,7 @@ def test_section_roll(tmp_path, name):
         assert first_sway(motion["time"], motion["y"], expected) == pytest.approx(
             swing, rel=SWAY_TOLERANCE)
     tail = motion["time"] > motion["time"][-1] - 1.0
-    assert np.mean(motion["z"][tail]) == pytest.approx(info["z_G_equilibrium"],
+    assert np.mean(motion["z"][tail]) == pytest.approx(info.z_G_equilibrium,
                                                        abs=0.01 * theory.draft)
 
 
@@ -135,14 +135,14 @@ def test_sphere_heave_from_three_heights(tmp_path, name, release, tolerance, ste
     # −0.26 / −0.42 / −0.80 mm; make test's own runs: +0.70 / +0.68 / −0.23 %, −0.29 / −0.49 /
     # −0.71 mm
     case, theory, motion, info = cfd(name, tmp_path, ["run.end_time=1.4", *step])
-    assert info["mesh"] == "wedge"
-    assert motion["z"][0] - info["z_G_equilibrium"] == pytest.approx(release, abs=1e-6)
+    assert info.mesh == "wedge"
+    assert motion["z"][0] - info.z_G_equilibrium == pytest.approx(release, abs=1e-6)
     decay = analysed(motion, "heave")
     assert decay["n_cycles"] >= 2.0
     series = cummins(case, nonlinear_restoring=release > 0.1 * theory.draft)
     expected = analyse_decay(series["time"], series["z"]).summary()["period_mean"]
     assert decay["period_mean"] == pytest.approx(expected, rel=tolerance)
-    assert decay["equilibrium"] == pytest.approx(info["z_G_equilibrium"],
+    assert decay["equilibrium"] == pytest.approx(info.z_G_equilibrium,
                                                  abs=0.01 * theory.draft)
 
 
@@ -164,7 +164,7 @@ def test_lab_sphere_first_cycle_against_the_basin(tmp_path):
     from floatfoam.analysis.settled import settled_level
 
     case, theory, motion, info = cfd("lab_sphere", tmp_path, ["run.end_time=1.1"])
-    assert info["mesh"] == "wedge"
+    assert info.mesh == "wedge"
     level = settled_level(case, "heave", layout.run_dir(case.name, "coarse", tmp_path), theory)
     assert level is not None
     first = crossing_reduction(motion["time"], motion["z"], level=level, n_extrema=2)
@@ -184,8 +184,8 @@ def test_a_mesh_made_at_equilibrium_starts_from_the_release(tmp_path):
     case, theory, motion, info = cfd("lab_sphere", tmp_path,
                                      ["run.end_time=0.2", 'run.mesh_pose="equilibrium"'])
     release = case.release["heave"]
-    assert info["mesh_offset"] == pytest.approx([0.0, 0.0, release], abs=1e-9)
-    assert motion["z"][0] - info["z_G_equilibrium"] == pytest.approx(release, abs=1e-6)
+    assert info.mesh_offset == pytest.approx([0.0, 0.0, release], abs=1e-9)
+    assert motion["z"][0] - info.z_G_equilibrium == pytest.approx(release, abs=1e-6)
     from foamlib import FoamFieldFile
 
     from floatfoam.foam.meshpose import _patch_points
@@ -256,14 +256,14 @@ def test_triaxial_ellipsoid_roll_3d(tmp_path):
     G (0.7095 s) is −7.0 % away."""
     record = 0.35  # a trough 5 % late (0.340 s) is still seen
     case, theory, motion, info = cfd("ellipsoid_roll", tmp_path, [f"run.end_time={record}"])
-    assert info["mesh"] == "3d-half"
+    assert info.mesh == "3d-half"
     assert motion["roll"][0] == pytest.approx(10.0, abs=1e-3)
     series = cummins(case)
     expected = extrema(series["time"], series["roll"], 1)[0]
     assert extrema(motion["time"], motion["roll"], 1)[0] == pytest.approx(expected, rel=0.05)
     assert first_sway(motion["time"], motion["y"], record) == pytest.approx(
         first_sway(series["time"], series["y"], record), rel=SWAY_TOLERANCE)
-    assert np.mean(motion["z"]) == pytest.approx(info["z_G_equilibrium"], abs=0.01 * theory.draft)
+    assert np.mean(motion["z"]) == pytest.approx(info.z_G_equilibrium, abs=0.01 * theory.draft)
 
 
 def first_crossing(t, x) -> float:
@@ -286,7 +286,7 @@ def test_triaxial_ellipsoid_pitch_3d(tmp_path):
     tests/test_cfd_setup.py checks G's place.)"""
     record = 0.18
     case, theory, motion, info = cfd("ellipsoid_pitch", tmp_path, [f"run.end_time={record}"])
-    assert info["mesh"] == "3d-half"
+    assert info.mesh == "3d-half"
     assert motion["pitch"][0] == pytest.approx(5.0, abs=1e-3)
     assert np.all(np.abs(motion["roll"]) < 1e-6)  # the plane y = 0 keeps it from rolling
     series = cummins(case, duration=0.5)
@@ -295,7 +295,7 @@ def test_triaxial_ellipsoid_pitch_3d(tmp_path):
     assert crossing == pytest.approx(expected, rel=0.05)
     linear = decay_series(case, "linear", duration=0.5)
     assert crossing > 1.1 * first_crossing(linear["time"], linear["pitch"])
-    assert np.mean(motion["z"]) == pytest.approx(info["z_G_equilibrium"], abs=0.01 * theory.draft)
+    assert np.mean(motion["z"]) == pytest.approx(info.z_G_equilibrium, abs=0.01 * theory.draft)
 
 
 def test_a_users_stl_body_rolls_with_its_added_inertia(tmp_path):
@@ -310,7 +310,7 @@ def test_a_users_stl_body_rolls_with_its_added_inertia(tmp_path):
     infinite frequency), where the body without added inertia (the memoir's linear model)
     would fall 3.75°."""
     case, _, motion, info = cfd("stl_pontoon", tmp_path, ["run.end_time=0.1"])
-    assert info["mesh"] == "3d-half"
+    assert info.mesh == "3d-half"
     assert motion["roll"][0] == pytest.approx(8.0, abs=1e-3)
 
     def drop(series):

@@ -15,12 +15,13 @@ from floatfoam.foam import domain, render
 from floatfoam.foam.logwatch import Step
 from floatfoam.foam.runner import Limits, Stall
 from floatfoam.hydrostatics.theory import equilibrium
+from floatfoam.plan import release
 from floatfoam.settings import MOTION_DIFFUSIVITIES
 
 
 def planned(name, overrides=()):
     case = load_case(name, list(overrides))
-    state = render.release_state(case, equilibrium(case))
+    state = release.release_state(case, equilibrium(case))
     return case, state, domain.plan(case, "coarse", state["pose"])
 
 
@@ -94,7 +95,7 @@ def test_morphing_past_the_clamped_bottom_is_named():
 
 
 def test_the_morphing_zone_reaches_as_far_as_the_tank_allows():
-    """The six-DoF distances' defaults (floatfoam.foam.motion_zone.distances): rigid within half
+    """The six-DoF distances' defaults (floatfoam.plan.zone.distances): rigid within half
     the body's smallest dimension, fixed beyond 0.9 × the room between the body at its release
     and the nearest held wall: for the capsizing ellipse (half beam 0.1 m, half height 0.15 m,
     released at 2°) the default tank's 0.9 m of air above the still water. A body that turns
@@ -122,7 +123,7 @@ def test_release_about_the_equilibrium_attitude():
     case = load_case("box_bilge", ["mass.cog=[0.0, 0.01, 0.0]"])
     eq = equilibrium(case)
     assert abs(math.degrees(eq.heel)) > 1.0
-    state = render.release_state(case, eq)
+    state = release.release_state(case, eq)
     assert state["pose"].heel == pytest.approx(eq.heel + math.radians(10.0))
     assert np.allclose(state["orientation"], rotation(state["pose"].heel, 0.0))
     step = Step(time=0.0, centre_of_mass=np.zeros(3), orientation=state["orientation"])
@@ -266,7 +267,7 @@ def test_mesh_made_at_equilibrium(tmp_path):
     O-grid and a body held still, in one line before anything is written."""
     from foamlib import FoamFile
 
-    from floatfoam.foam.driver import mesh_pose
+    from floatfoam.plan.release import mesh_pose
 
     case, state, mesh = planned("lab_sphere", ['run.mesh_pose="equilibrium"'])
     eq = equilibrium(case)
@@ -298,10 +299,10 @@ def test_default_end_time_and_its_refusal():
     case = load_case("ellipsoid")  # no [run]; released heeled 5°
     assert case.settings.run.end_time is None
     roll = theory_summary(case).period("roll")
-    assert render.end_time_of(case) == pytest.approx(round(5 * 1.15 * roll, 2))
-    assert render.end_time_of(load_case("ellipsoid", ["run.end_time=1.0"])) == 1.0
+    assert release.end_time_of(case) == pytest.approx(round(5 * 1.15 * roll, 2))
+    assert release.end_time_of(load_case("ellipsoid", ["run.end_time=1.0"])) == 1.0
     with pytest.raises(InputError, match="capsizes"):  # ellipsoid_printed_verdict's body
-        render.end_time_of(load_case("ellipsoid", ["mass.cog=[0,0,0.08]"]))
+        release.end_time_of(load_case("ellipsoid", ["mass.cog=[0,0,0.08]"]))
 
 
 def test_cases_extend_one_another(tmp_path):

@@ -14,10 +14,12 @@ from floatfoam import layout
 from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.errors import InputError
-from floatfoam.foam import driver, runner, stamps, timedirs
+from floatfoam.foam import driver, runner, timedirs
 from floatfoam.foam.logwatch import LogWatcher, Step
 from floatfoam.foam.motionlog import MotionWriter
 from floatfoam.foam.paraview import RECONSTRUCT
+from floatfoam.plan import stamps
+from floatfoam.plan.runplan import resolve
 
 EXCERPT = Path(__file__).parent / "data" / "log.interFoam.excerpt"
 
@@ -153,6 +155,13 @@ def test_the_eta_follows_the_recent_step_rate():
     assert 0.01 < mixed.rate() < 0.02
 
 
+def prepare(case, level, np_, force, build, divisor=1, morphing=1.0):
+    """The run folder of ``case``'s plan and :func:`floatfoam.foam.driver.prepare`'s
+    (resumed, finished) for it."""
+    plan = resolve(case, level, np_, build_dir=build, divisor=divisor, morphing=morphing)
+    return (plan.run_dir, *driver.prepare(plan, force))
+
+
 @pytest.fixture
 def case():
     # Debian's interFoam exists on every machine with the apt package; nothing is run here.
@@ -160,19 +169,19 @@ def case():
 
 
 def test_prepare_refuses_resumes_and_forces(tmp_path, case):
-    run_dir, resumed, finished = driver.prepare(case, "coarse", 1, False, tmp_path)
+    run_dir, resumed, finished = prepare(case, "coarse", 1, False, tmp_path)
     assert not resumed and not finished
-    assert driver.prepare(case, "coarse", 1, False, tmp_path)[1]  # unfinished: resume
+    assert prepare(case, "coarse", 1, False, tmp_path)[1]  # unfinished: resume
     with pytest.raises(InputError, match="--force"):
-        driver.prepare(case, "coarse", 2, False, tmp_path)  # other --np
+        prepare(case, "coarse", 2, False, tmp_path)  # other --np
     layout.mark_done(run_dir, "finished")
-    assert driver.prepare(case, "coarse", 1, False, tmp_path)[2]  # finished: reuse, no run
+    assert prepare(case, "coarse", 1, False, tmp_path)[2]  # finished: reuse, no run
     other = load_case("cylinder_heave", ['run.solver="/usr/bin/interFoam"',
                                          "run.write_interval=0.2"])
     with pytest.raises(InputError, match="finished run"):
-        driver.prepare(other, "coarse", 1, False, tmp_path)
-    driver.prepare(other, "coarse", 1, True, tmp_path)  # --force moves the old run aside
-    driver.prepare(other, "coarse", 1, True, tmp_path)  # twice in the same second
+        prepare(other, "coarse", 1, False, tmp_path)
+    prepare(other, "coarse", 1, True, tmp_path)  # --force moves the old run aside
+    prepare(other, "coarse", 1, True, tmp_path)  # twice in the same second
     moved = sorted(p.name for p in (tmp_path / "cylinder_heave").iterdir())
     assert len(moved) == 3 and moved[0] == "coarse"
     assert all(name.startswith("coarse.old-") for name in moved[1:])
@@ -193,7 +202,7 @@ def synthetic_run(build: Path, end_time: float, interval: float, *, finished: bo
     controlDict and info.json of ``end_time``, complete time folders every ``interval`` up to
     it (or ``times``), and when ``finished`` its reconstructPar and finished markers. Nothing
     in it came from a solver."""
-    run_dir, _, _ = driver.prepare(heave(end_time, interval), "coarse", 1, False, build)
+    run_dir, _, _ = prepare(heave(end_time, interval), "coarse", 1, False, build)
     (run_dir / "system").mkdir()
     shutil.copy(layout.COMMON_DIR / "system" / "controlDict", run_dir / "system")
     control = FoamFile(run_dir / "system" / "controlDict")
@@ -240,7 +249,7 @@ def test_a_finished_run_continues_to_a_later_end_time(tmp_path, capsys):
     run_dir = synthetic_run(tmp_path, 0.1, 0.05)
     assert driver.existing_run(heave(0.2), "coarse", 1, tmp_path) == (run_dir, False)
     assert layout.is_finished(run_dir)  # existing_run writes nothing
-    assert driver.prepare(heave(0.2), "coarse", 1, False, tmp_path) == (run_dir, True, False)
+    assert prepare(heave(0.2), "coarse", 1, False, tmp_path) == (run_dir, True, False)
     assert not layout.is_finished(run_dir) and not layout.step_done(run_dir, RECONSTRUCT)
     assert control_times(run_dir) == (0.2, 0.05) and info_end_time(run_dir) == 0.2
     assert [t for t, _ in layout.time_folders(run_dir)] == [0.05, 0.1]
@@ -252,7 +261,7 @@ def test_the_write_interval_of_a_continued_run_divides_the_time_left(tmp_path):
     times from the time it restarts from, so it writes every 0.075 s and the last falls on
     0.25 s (as a new run's interval divides its end time)."""
     run_dir = synthetic_run(tmp_path, 0.1, 0.1)
-    assert driver.prepare(heave(0.25, 0.1), "coarse", 1, False, tmp_path)[1]
+    assert prepare(heave(0.25, 0.1), "coarse", 1, False, tmp_path)[1]
     end, interval = control_times(run_dir)
     assert end == 0.25 and interval == pytest.approx(0.075)
 
@@ -262,7 +271,7 @@ def test_a_run_finished_past_the_end_time_asked_is_kept(tmp_path, capsys):
     line saying its record is longer than asked and how to run it anew)."""
     run_dir = synthetic_run(tmp_path, 0.1, 0.05)
     capsys.readouterr()
-    assert driver.prepare(heave(0.05), "coarse", 1, False, tmp_path) == (run_dir, False, True)
+    assert prepare(heave(0.05), "coarse", 1, False, tmp_path) == (run_dir, False, True)
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "kept as it is" in err and "motion.csv" in err
     assert "longer than asked" in err and "--force" in err
@@ -276,9 +285,9 @@ def test_an_unfinished_run_goes_to_the_end_time_asked_past_its_written_times(tmp
     its written times; one asked for no further than what it has written is refused, in one
     line, before anything is written (its folder as it was)."""
     run_dir = synthetic_run(tmp_path, 0.3, 0.05, finished=False, times=[0.05, 0.1])
-    assert driver.prepare(heave(0.3), "coarse", 1, False, tmp_path) == (run_dir, True, False)
+    assert prepare(heave(0.3), "coarse", 1, False, tmp_path) == (run_dir, True, False)
     assert control_times(run_dir) == (0.3, 0.05)  # its own end time: as it was
-    assert driver.prepare(heave(0.2), "coarse", 1, False, tmp_path) == (run_dir, True, False)
+    assert prepare(heave(0.2), "coarse", 1, False, tmp_path) == (run_dir, True, False)
     assert control_times(run_dir) == (0.2, 0.05) and info_end_time(run_dir) == 0.2
     before = sorted(p.relative_to(run_dir) for p in run_dir.rglob("*"))
     for asked in (0.1, 0.05):
@@ -286,7 +295,7 @@ def test_an_unfinished_run_goes_to_the_end_time_asked_past_its_written_times(tmp
                                              r"> 0.1 s.*--force"):
             driver.existing_run(heave(asked), "coarse", 1, tmp_path)
         with pytest.raises(InputError, match="already written"):
-            driver.prepare(heave(asked), "coarse", 1, False, tmp_path)
+            prepare(heave(asked), "coarse", 1, False, tmp_path)
     assert sorted(p.relative_to(run_dir) for p in run_dir.rglob("*")) == before
     assert control_times(run_dir) == (0.2, 0.05)
 

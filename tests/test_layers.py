@@ -21,8 +21,10 @@ def imported(path: Path) -> set[str]:
     return names
 
 
-@pytest.mark.parametrize("package", ["hydrostatics", "potential"])
-def test_theory_and_potential_flow_import_no_mesher_and_no_run(package):
+@pytest.mark.parametrize("package", ["hydrostatics", "potential", "analysis", "plan"])
+def test_theory_potential_flow_plan_and_analysis_import_no_mesher_and_no_run(package):
+    # the analysis reads what a run recorded (its stamp, its info.json) and the plan's rules;
+    # it neither meshes nor runs
     files = sorted((SRC / package).glob("*.py"))
     assert files
     for path in files:
@@ -60,3 +62,13 @@ def test_the_shared_pieces_reach_no_stage_above_them(module):
     stages = ("hydrostatics/", "potential/", "meshing/", "foam/", "analysis/", "cli/")
     above = sorted(p for p in reachable(module) if p.startswith(stages))
     assert reachable(module) and not above, f"{module} reaches {above}"
+
+
+def test_the_plan_reaches_no_mesher_no_run_and_no_analysis():
+    # a run's plan is resolved before anything is meshed or run; the analysis reads it
+    stages = ("meshing/", "foam/", "analysis/", "cli/")
+    found = set()
+    for path in sorted((SRC / "plan").glob("*.py")):
+        found |= reachable("floatfoam.plan." + path.stem)
+    above = sorted(p for p in found if p.startswith(stages))
+    assert found and not above, f"floatfoam.plan reaches {above}"

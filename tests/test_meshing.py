@@ -14,11 +14,12 @@ from floatfoam.bodies.surfaces import stl_body
 from floatfoam.case import load_case, with_overrides
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.theory import equilibrium
-from floatfoam.layout import CASES_DIR, list_cases
+from floatfoam.layout import CASES_DIR, LEVELS, list_cases
 from floatfoam.meshing import body_surface, levels
 from floatfoam.meshing.domains import build_domain
 from floatfoam.meshing.planar import progression
 from floatfoam.meshing.volume_report import discrete_volume_report
+from floatfoam.plan.level import level_index
 from floatfoam.tank import Pose, pose
 
 CASES = [folder.name for folder in list_cases()]
@@ -31,7 +32,7 @@ def volume_tolerance(level: str) -> float:
     curvature ρ (sagitta h²/8ρ over a chord); with h = D/24 and ρ ≥ D/2 at coarse that is
     ≤ 6e-4 for a section, and a triangulated ellipsoid measured 2.5e-3 (sphere, coarse). 5e-3
     at coarse, second order (÷ r² per level) after."""
-    return 5e-3 / R ** (2 * levels.level_index(level))
+    return 5e-3 / R ** (2 * level_index(level))
 
 
 @pytest.fixture(scope="module")
@@ -56,7 +57,7 @@ def test_body_stl_is_closed_and_holds_its_volume(name, cases, tmp_path):
 
 def test_section_volume_converges_at_second_order(cases):
     errors = [discrete_volume_report(cases["cylinder_heave"], level)["volume_error"]
-              for level in levels.LEVELS]
+              for level in LEVELS]
     assert all(e < 0 for e in errors)  # inscribed polygon
     for coarse, fine in zip(errors[:-1], errors[1:], strict=True):
         # (2π²/3)/N² for a regular N-gon: each level multiplies N by r, divides the error by
@@ -110,7 +111,7 @@ def _physical_names(path):
 def test_2d_domain_groups_and_levels(cases, tmp_path):
     case = cases["cylinder_heave"]
     cells = []
-    for level in levels.LEVELS:
+    for level in LEVELS:
         result = build_domain(case, level, "auto", path=tmp_path / f"{level}.msh")
         assert result["kind"] == "2d"
         assert set(result["cell_types"]) == {"Hexahedron"}  # all quads, extruded

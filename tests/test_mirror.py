@@ -1,6 +1,6 @@
 """A body given by triangles meshed in half the tank: its mirror symmetry found from its
 triangles (or its implicit expression), its half cut along the plane, and the normals of its
-half's prism layers (floatfoam.bodies.mirror, floatfoam.meshing.domains.half_plane)."""
+half's prism layers (floatfoam.bodies.mirror, floatfoam.plan.kind.half_plane)."""
 
 import math
 
@@ -12,7 +12,7 @@ from floatfoam.bodies.mirror import clip_half, corner_normals, mirror_planes
 from floatfoam.case import load_case, with_overrides
 from floatfoam.hydrostatics.theory import equilibrium
 from floatfoam.layout import CASES_DIR
-from floatfoam.meshing.domains import half_plane
+from floatfoam.plan.kind import half_plane
 from floatfoam.tank import pose
 
 

@@ -14,8 +14,9 @@ from floatfoam import fields, settings
 from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.foam.domain import plan
-from floatfoam.foam.render import constraints, release_state
+from floatfoam.foam.render import constraints
 from floatfoam.hydrostatics.theory import equilibrium
+from floatfoam.plan.release import release_state
 
 
 def _mesh(case):

@@ -17,10 +17,11 @@ from floatfoam.bodies.geometry import rotation
 from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.errors import InputError
-from floatfoam.foam import domain, render
+from floatfoam.foam import domain
 from floatfoam.hydrostatics.fluid_domain import check_release
 from floatfoam.hydrostatics.gz import MAX_STEPS, check_angles, gz_curve
 from floatfoam.hydrostatics.theory import equilibrium
+from floatfoam.plan.release import release_state
 from floatfoam.potential.bounded import Heartbeat
 from floatfoam.potential.models import BYTES_PER_SAMPLE, SERIES_MEMORY, check_duration, decay_series
 from floatfoam.potential.rigid_body import _to_earth, yaw_matrix
@@ -269,7 +270,7 @@ def test_run_refuses_a_release_below_the_bottom_first(capsys, build, no_mesh):
 
 def test_the_bottom_warning_never_suggests_a_negative_distance():
     case = load_case("sphere", ['run.mesh_motion="distances"'])  # the warning's motion
-    state = render.release_state(case, equilibrium(case))
+    state = release_state(case, equilibrium(case))
     mesh = domain.plan(case, "coarse", state["pose"])  # inner 0.06 m, outer 0.32 m
     below = domain.clamped_bottom(mesh, case, Pose(z_c=-5.0))
     assert "at most -" not in below and "reaches 3.1 m past the tank's bottom" in below

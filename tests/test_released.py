@@ -11,6 +11,7 @@ from floatfoam import layout
 from floatfoam.analysis.released import NOISE_FRACTION, choose, released_by_run
 from floatfoam.cli import main
 from floatfoam.motion import read_motion, write_motion
+from floatfoam.plan.record import read_record
 
 PERIOD, ZETA = 0.868, 0.0265  # elliptic_cylinder_roll's roll (its case.toml)
 T = np.arange(0.0, 4.5, 0.005)
@@ -64,7 +65,7 @@ def test_a_run_that_released_several_dofs_gives_one_object_each(tmp_path, capsys
     run = roll_run(tmp_path, RECORDED | {"release": {"heave": 0.01, "heel": 10.0, "trim": 0.0}})
     heave = -0.05 + 0.01 * np.exp(-0.3 * T) * np.cos(2 * math.pi / 0.76 * T)
     write_motion(run / "motion.csv", T, z=heave, roll=roll_decay())
-    assert released_by_run(json.loads((run / ".floatfoam/info.json").read_text())) == (
+    assert released_by_run(read_record(run)) == (
         "heave", "roll")
     assert main(["analyse", str(run), "--json"]) == 0
     assert [d["dof"] for d in json.loads(capsys.readouterr().out)] == ["heave", "roll"]

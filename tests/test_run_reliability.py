@@ -10,6 +10,7 @@ OpenFOAM error, and the Slurm batch script's tasks run with bash.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import shutil
 import signal
@@ -28,9 +29,10 @@ from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.foam import domain, render, runner, timedirs
 from floatfoam.foam.motionlog import rebuild_motion
-from floatfoam.hydrostatics.theory import equilibrium
 from floatfoam.layout import is_finished
 from floatfoam.motion import read_motion
+from floatfoam.plan.level import level_factor
+from floatfoam.plan.runplan import resolve
 
 pytestmark = pytest.mark.openfoam
 
@@ -247,7 +249,7 @@ def test_a_finished_run_continues_to_a_later_end_time(tmp_path):
     record = read_motion(run_dir / "motion.csv")
     t = record["time"]
     case = load_case(CASE)
-    largest_step = case.settings.run.max_delta_t / domain.level_factor(case, "coarse")
+    largest_step = case.settings.run.max_delta_t / level_factor(case, "coarse")
     assert 0.0 < t[0] <= largest_step * (1 + 1e-6)  # from the release on
     assert t[-1] == pytest.approx(0.2, abs=1e-9)
     assert np.all(np.diff(t) > 0) and np.max(np.diff(t)) <= largest_step * (1 + 1e-6)
@@ -282,10 +284,8 @@ def test_hostfile(tmp_path):
 def test_odd_rank_count_decomposes(tmp_path):
     """Three ranks: the rendered decomposition splits the tank 1 × 3 × 1 and decomposePar
     (real) makes three processor meshes; no solver runs."""
-    case = load_case(CASE)
-    state = render.release_state(case, equilibrium(case))
-    mesh = domain.plan(case, "coarse", state["pose"])
-    render.render(case, "coarse", tmp_path, state, mesh, np_=3)
+    plan = dataclasses.replace(resolve(load_case(CASE), "coarse", 3), run_dir=tmp_path)
+    render.render(plan, domain.plan(plan.case, "coarse", plan.release))
     runner.run_app(tmp_path, "blockMesh", ["blockMesh"], quiet=True, marker=False)
     shutil.copytree(tmp_path / "0.orig", tmp_path / "0")
     runner.run_app(tmp_path, "decomposePar", ["decomposePar"], quiet=True, marker=False)

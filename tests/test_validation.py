@@ -34,10 +34,13 @@ from floatfoam.analysis.validation import (
 )
 from floatfoam.case import load_case
 from floatfoam.errors import InputError
-from floatfoam.foam.driver import prepare, smaller_steps
-from floatfoam.foam.stamps import settings_digest
+from floatfoam.foam import driver
 from floatfoam.hydrostatics.theory import theory_summary
 from floatfoam.motion import file_unit, write_motion
+from floatfoam.plan.record import RunRecord
+from floatfoam.plan.release import smaller_steps
+from floatfoam.plan.runplan import resolve
+from floatfoam.plan.stamps import settings_digest
 
 # Celik et al. (2008), J. Fluids Eng. 130:078001, Table 1: three columns, N1, N2, N3 cells of
 # a 2D grid (r from the counts, their eq. 1), φ1..φ3, and what they print: p (2 decimals),
@@ -136,6 +139,13 @@ def test_two_grid_gci_of_the_time_step():
     result = gci.two_level(0.610, 0.612, 2.0, 1.0)
     assert result.gci_fine == pytest.approx(3 * 0.002 / 0.612)
     assert result.gci_coarse == pytest.approx(6 * 0.002 / 0.612)
+
+
+def prepare(case, level, np_, force, build, divisor=1, morphing=1.0):
+    """The run folder of ``case``'s plan and :func:`floatfoam.foam.driver.prepare`'s
+    (resumed, finished) for it: the folder stamped as ``floatfoam run`` stamps it."""
+    plan = resolve(case, level, np_, build_dir=build, divisor=divisor, morphing=morphing)
+    return (plan.run_dir, *driver.prepare(plan, force))
 
 
 def _finished_heave_run(run, t, z):
@@ -305,15 +315,15 @@ def test_scaled_morphing_is_another_run(name, overrides):
     """--morphing 1.5: both distances × 1.5 when the case sets them, ÷ 1.5 when they are the
     defaults, which reach as far as the tank allows; in a run of its own settings."""
     from floatfoam.foam import domain
-    from floatfoam.foam.morphing import morphing_variant, scaled_morphing
-    from floatfoam.foam.render import release_state
     from floatfoam.hydrostatics.theory import equilibrium
+    from floatfoam.plan.morphing import morphing_variant, scaled_morphing
+    from floatfoam.plan.release import release_state
 
     case = load_case(name, list(overrides))
     pose = release_state(case, equilibrium(case))["pose"]
     mesh = domain.plan(case, "coarse", pose)
     assert mesh.motion == "distances"
-    wider = scaled_morphing(case, "coarse", pose, 1.5)
+    wider = scaled_morphing(case, pose, 1.5)
     scale = 1.5 if overrides else 1 / 1.5
     assert wider.settings.run.inner_distance == pytest.approx(scale * mesh.inner)
     assert wider.settings.run.outer_distance == pytest.approx(scale * mesh.outer)
@@ -324,7 +334,7 @@ def test_scaled_morphing_is_another_run(name, overrides):
         assert morphing_variant(case, "distances", 1.5).startswith("distances ÷ 1.5 (their "
                                                                   "defaults reach as far")
     assert settings_digest(wider, "coarse") != settings_digest(case, "coarse")
-    assert scaled_morphing(case, "coarse", pose, 1) is case
+    assert scaled_morphing(case, pose, 1) is case
 
 
 def test_scaled_morphing_of_the_laplacian_spreads_its_diffusivity():
@@ -333,27 +343,27 @@ def test_scaled_morphing_of_the_laplacian_spreads_its_diffusivity():
     a factor < 1 is refused (no narrower Laplacian is offered), and so is a wider one of a case
     already at 1/d; the distances ignore the setting."""
     from floatfoam.foam import domain
-    from floatfoam.foam.morphing import morphing_variant, scaled_morphing
-    from floatfoam.foam.render import release_state
     from floatfoam.hydrostatics.theory import equilibrium
+    from floatfoam.plan.morphing import morphing_variant, scaled_morphing
+    from floatfoam.plan.release import release_state
 
     case = load_case("elliptic_cylinder")  # heave alone on a 2D section
     pose = release_state(case, equilibrium(case))["pose"]
     assert domain.plan(case, "coarse", pose).motion == "laplacian"
     assert case.settings.run.motion_diffusivity == "quadratic"
     for factor in (1.5, 2.0):
-        wider = scaled_morphing(case, "coarse", pose, factor)
+        wider = scaled_morphing(case, pose, factor)
         assert wider.settings.run.motion_diffusivity == "linear"
         assert wider.settings.run.inner_distance == case.settings.run.inner_distance
         assert settings_digest(wider, "coarse") != settings_digest(case, "coarse")
     assert morphing_variant(case, "laplacian", 1.5) == "diffusivity 1/d instead of 1/d²"
     with pytest.raises(InputError) as err:
-        scaled_morphing(case, "coarse", pose, 0.5)
+        scaled_morphing(case, pose, 0.5)
     assert "\n" not in str(err.value)
     assert "--morphing 0.5" in str(err.value) and "narrower than 1/d²" in str(err.value)
     with pytest.raises(InputError, match="1/d. is the widest offered"):
-        scaled_morphing(wider, "coarse", pose, 1.5)
-    assert scaled_morphing(case, "coarse", pose, 1) is case
+        scaled_morphing(wider, pose, 1.5)
+    assert scaled_morphing(case, pose, 1) is case
 
 
 @pytest.mark.parametrize("argv, word", [
@@ -451,22 +461,30 @@ def test_the_level_a_heave_record_settles_at(tmp_path):
     lowered by the discrete body's equilibrium shift — to first order its missing immersed
     volume at equilibrium over A_wp (0.17 mm) — and raised 0.018 mm for the water the body
     displaces more of at equilibrium than at its release (A_wp × 29.16 mm over π × 6² m² less
-    A_wp). A 2D section's slab (rise 1–3 % of the release) and the angles have none: the fit's
-    level stays."""
+    A_wp). The run records the shift (the render's info.json); a run without it, a 2D
+    section's slab (rise 1–3 % of the release) and the angles have none: the fit's level
+    stays."""
+    from floatfoam.foam.render import equilibrium_shift
+    from floatfoam.hydrostatics.theory import equilibrium
     from floatfoam.meshing.volume_report import discrete_volume_report
 
     case = load_case("lab_sphere")
     theory = theory_summary(case)
     run = layout.run_dir(case.name, "coarse", tmp_path)
     (run / layout.MARKERS).mkdir(parents=True)
-    info = {"mesh": "wedge", "z_G_equilibrium": -0.0348, "immersed_error": 0.0}
-    (run / layout.MARKERS / "info.json").write_text(json.dumps(info))
     area = math.pi * 0.15**2
     assert theory.waterplane_area == pytest.approx(area, rel=1e-3)
     wedge = discrete_volume_report(case, "coarse")["meridian"]
     first_order = wedge["immersed_error"] * wedge["immersed_exact"] / area
     assert -0.2e-3 < wedge["equilibrium_shift"] < -0.15e-3
     assert wedge["equilibrium_shift"] == pytest.approx(first_order, rel=0.02)
+    shift = equilibrium_shift(case, "coarse", "wedge", equilibrium(case))
+    assert shift == wedge["equilibrium_shift"]
+    info = {"mesh": "wedge", "z_G_equilibrium": -0.0348, "immersed_error": 0.0}
+    (run / layout.MARKERS / "info.json").write_text(json.dumps(info))
+    assert settled_level(case, "heave", run, theory) is None  # the shift not recorded
+    info["equilibrium_shift"] = shift
+    (run / layout.MARKERS / "info.json").write_text(json.dumps(info))
     expected = -0.0348 + wedge["equilibrium_shift"] + area * 0.02916 / (math.pi * 36 - area)
     assert settled_level(case, "heave", run, theory) == pytest.approx(expected, rel=1e-9)
     assert settled_level(case, "roll", run, theory) is None
@@ -531,11 +549,11 @@ def test_a_changed_mesh_motion_rule_makes_a_finished_run_foreign(monkeypatch):
     """The stamp holds the mesh motion the defaults resolve to (the Laplacian or the six-DoF
     distances, and their values): a run made on the distances is not one of a case that now
     resolves to the Laplacian, though its case file and settings are the same."""
-    from floatfoam.foam import motion_zone
+    from floatfoam.plan import zone
 
     case = load_case("box_bilge")  # 2D roll: the Laplacian
     now = settings_digest(case, "coarse")
-    monkeypatch.setattr(motion_zone, "mesh_motion", lambda case, kind: "distances")
+    monkeypatch.setattr(zone, "mesh_motion", lambda case, kind: "distances")
     assert settings_digest(case, "coarse") != now
 
 
@@ -758,20 +776,19 @@ def test_a_failed_run_leaves_the_study_of_the_others(tmp_path, monkeypatch, extr
     for level, n in cells.items():
         _synthetic_run(tmp_path, level, n, 0.6 + 0.02 * (cells["fine"] / n), 0.1, 0.002)
     monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path))
-    monkeypatch.setattr(driver, "check_run", lambda *a, **k: None)
+    monkeypatch.setattr(driver, "check_plan", lambda plan: None)
     started = []
 
-    def run_case(case, level, np_, *, build_dir, equilibrium, time_step_divisor=1,
-                 morphing=1.0):
-        assert build_dir == tmp_path
-        run = layout.run_dir(case.name, level, tmp_path, time_step_divisor=time_step_divisor,
-                             morphing=morphing)
+    def run_plan(plan):
+        assert plan.run_dir.parent.parent == tmp_path
+        run = plan.run_dir
         started.append(run.name)
-        if time_step_divisor == 1 and morphing == 1:
-            return driver.RunResult(run, run / "motion.csv", {"cells": cells[level]}, False, True)
-        raise RunError(f"{case.name}/{run.name}: diverged (raised by this test)")
+        if plan.divisor == 1 and plan.morphing == 1:
+            return driver.RunResult(run, run / "motion.csv", RunRecord(cells=cells[plan.level]),
+                                    False, True)
+        raise RunError(f"{plan.case.name}/{run.name}: diverged (raised by this test)")
 
-    monkeypatch.setattr(driver, "run_case", run_case)
+    monkeypatch.setattr(driver, "run_plan", run_plan)
     args = build_parser().parse_args(["validate", "cylinder_heave", *extra])
     assert cli_validate.run(args) == 1
     assert started == planned
@@ -837,6 +854,8 @@ def test_the_level_a_3d_heave_record_settles_at(tmp_path):
     the whole tank's free surface less A_wp. The ellipsoid of revolution's 4 × 4 m tank
     (16 m²) rises 0.44 % of a heave release: the water spreads over it while the first cycles
     pass, so the fit's level stays; a 12 × 12 m tank rises 0.05 % and has a settled level."""
+    from floatfoam.foam.render import equilibrium_shift
+    from floatfoam.hydrostatics.theory import equilibrium
     from floatfoam.meshing.volume_report import discrete_volume_report
 
     overrides = ["release.heave=0.01", "release.heel=0.0"]
@@ -851,8 +870,10 @@ def test_the_level_a_3d_heave_record_settles_at(tmp_path):
     expected = -0.05 + shift + area * 0.01 / (144.0 - area)
     run = layout.run_dir("ellipsoid", "coarse", tmp_path)
     (run / layout.MARKERS).mkdir(parents=True)
-    for mesh in ("3d", "3d-half"):
-        info = {"mesh": mesh, "z_G_equilibrium": -0.05}
+    for mesh in ("3d", "3d-half"):  # the shift the render records
+        recorded = equilibrium_shift(wide, "coarse", mesh, equilibrium(wide))
+        assert recorded == shift
+        info = {"mesh": mesh, "z_G_equilibrium": -0.05, "equilibrium_shift": recorded}
         (run / layout.MARKERS / "info.json").write_text(json.dumps(info))
         assert settled_level(small, "heave", run, theory) is None  # 16 m²: rise 0.44 %
         assert settled_level(wide, "heave", run, theory) == pytest.approx(expected, rel=1e-9)

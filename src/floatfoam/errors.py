@@ -74,3 +74,10 @@ def table_vector(cfg: dict, table: str, key: str, *, positive: bool = False):
     for v in value:
         in_range(float(v), f"{table}.{key}", positive)
     return np.array(value, dtype=float)
+
+
+def required(value, name: str):
+    """A setting the CFD case cannot do without: an InputError naming it when absent."""
+    if value is None:
+        raise InputError(f"{name} is missing; the CFD case needs it")
+    return value

@@ -57,7 +57,7 @@ def run_name(level: str, time_step_divisor: int = 1, morphing: float = 1.0) -> s
     """A run's folder name: its mesh level, followed by ``-dt<k>`` when its time steps are
     those of the level divided by k (the time-step study of ``floatfoam validate``) and by
     ``-morph<f>`` when its mesh motion is the case's spread by f (its study of the mesh
-    motion: :func:`floatfoam.foam.morphing.scaled_morphing`)."""
+    motion: :func:`floatfoam.plan.morphing.scaled_morphing`)."""
     name = level if time_step_divisor == 1 else f"{level}-dt{time_step_divisor}"
     return name if morphing == 1 else f"{name}-morph{morphing:g}"
 

@@ -29,20 +29,22 @@ def _stderr(line: str) -> None:
     print(line, file=sys.stderr)
 
 
-def check_study(case, np_: int, runs: list[tuple[str, int, float]], build: Path):
+def check_study(case, np_: int, runs: list[tuple[str, int, float]], build: Path) -> list:
     """Every run of a study (``runs``: :func:`floatfoam.analysis.validation.plan`'s (level,
     time-step divisor, morphing factor)) checked as :func:`floatfoam.foam.driver.check_run`
-    checks one, before the first starts or is submitted; returns the case's equilibrium,
-    solved for the checks. Raises InputError; writes nothing."""
-    from floatfoam.foam.driver import check_ranks, check_run
+    checks one, before the first starts or is submitted; returns their plans
+    (:class:`floatfoam.plan.runplan.RunPlan`). Raises InputError; writes nothing."""
+    from floatfoam.foam.driver import check_plan, check_ranks
     from floatfoam.hydrostatics.theory import equilibrium
+    from floatfoam.plan.runplan import resolve
 
     check_ranks(np_, None)
     eq = equilibrium(case)
-    for level, divisor, factor in runs:
-        check_run(case, level, np_, eq, build_dir=build, time_step_divisor=divisor,
-                  morphing=factor)
-    return eq
+    plans = [resolve(case, level, np_, build_dir=build, equilibrium=eq, divisor=divisor,
+                     morphing=factor) for level, divisor, factor in runs]
+    for plan in plans:
+        check_plan(plan)
+    return plans
 
 
 def run_study(case, np_: int = 1, *, time_level: str = "medium",
@@ -61,7 +63,7 @@ def run_study(case, np_: int = 1, *, time_level: str = "medium",
     InputError before any run when the inputs are bad, or when no run has finished and none
     failed (every run failed: an empty study and the failures named)."""
     from floatfoam.analysis.validation import plan, study_morphing, validate_case
-    from floatfoam.foam.driver import check_ranks, run_case
+    from floatfoam.foam.driver import check_ranks, run_plan
     from floatfoam.foam.runner import RunError
 
     check_ranks(np_, None)
@@ -71,24 +73,22 @@ def run_study(case, np_: int = 1, *, time_level: str = "medium",
     runs = plan(time_level, morphing)
     failed: list[str] = []
     if run:
-        eq = check_study(case, np_, runs, build)
-        names = [layout.run_name(*item) for item in runs]
+        plans = check_study(case, np_, runs, build)
+        names = [item.run_dir.name for item in plans]
         say(f"[validate {case.name}] {len(runs)} runs on {np_} rank(s): {', '.join(names)} "
             "(finished ones are reused, interrupted ones resume)")
-        for i, (level, divisor, factor) in enumerate(runs, 1):
-            name = layout.run_name(level, divisor, factor)
+        for i, (item, name) in enumerate(zip(plans, names, strict=True), 1):
             start = time.monotonic()
             say(f"[validate {case.name}] run {i}/{len(runs)}: {name}")
             try:
-                done = run_case(case, level, np_, build_dir=build, equilibrium=eq,
-                                time_step_divisor=divisor, morphing=factor)
+                done = run_plan(item)
             except RunError as err:
                 say(f"floatfoam validate: run {name} failed: {err}")
                 failed.append(name)
                 continue
             what = "already finished" if done.already_finished else \
                 f"{time.monotonic() - start:.0f} s wall"
-            say(f"[validate {case.name}] {name}: {done.info.get('cells')} cells, {what}")
+            say(f"[validate {case.name}] {name}: {done.info.cells} cells, {what}")
     study = validate_case(case, build, time_level, morphing)
     if not study["runs"] and not failed:
         raise InputError(f"case {case.name!r} has no finished run under {build}; valid: run "

@@ -16,16 +16,15 @@ peak speed in motion.csv, so that frames compare.
 
 from __future__ import annotations
 
-import json
 import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from floatfoam import layout
 from floatfoam.errors import InputError
 from floatfoam.layout import time_folders
+from floatfoam.plan.record import has_record, read_record, record_path
 
 SLABS, WEDGES, SOLIDS = ("2d", "ogrid"), ("wedge",), ("3d", "3d-half")
 WATER = "alpha.water"
@@ -86,14 +85,13 @@ def open_run(run_dir) -> Run:
         field or no patch ``body``.
     """
     run = Path(run_dir)
-    info_path = run / layout.MARKERS / "info.json"
-    if not (run / "system" / "controlDict").is_file() or not info_path.is_file():
-        raise InputError(f"run directory {run}: no OpenFOAM case with {info_path.name}; valid is "
-                         "a run directory written by floatfoam run")
-    info = json.loads(info_path.read_text())
-    mesh = info.get("mesh")
+    if not (run / "system" / "controlDict").is_file() or not has_record(run):
+        raise InputError(f"run directory {run}: no OpenFOAM case with {record_path(run).name}; "
+                         "valid is a run directory written by floatfoam run")
+    info = read_record(run)
+    mesh = info.mesh
     if mesh not in SLABS + WEDGES + SOLIDS:
-        raise InputError(f"{info_path}: mesh = {mesh!r}; valid are "
+        raise InputError(f"{record_path(run)}: mesh = {mesh!r}; valid are "
                          f"{', '.join(SLABS + WEDGES + SOLIDS)}")
     reader = offscreen_pyvista().POpenFOAMReader(str(run / "system" / "controlDict"))
     if decomposed(run):
@@ -109,7 +107,7 @@ def open_run(run_dir) -> Run:
                          "wrote fields (run.write_interval below run.end_time)")
     if WATER not in reader.cell_array_names:
         raise InputError(f"run directory {run}: no field {WATER}; valid is an interFoam run")
-    dof = "roll" if info.get("heel") else "pitch" if info.get("trim") else "heave"
+    dof = "roll" if info.heel else "pitch" if info.trim else "heave"
     return Run(run, reader, times, mesh, dof)
 
 

@@ -58,12 +58,9 @@ def _case_folder(run: Path) -> Path:
     """The folder of the case a run was made of: the one its info.json names (any case's),
     else cases/<the run's case folder name> (a run recorded before info.json named it, or
     a case folder that has moved since)."""
-    import json
+    from floatfoam.plan.record import RunRecord, record_or_none
 
-    try:
-        named = json.loads((run / layout.MARKERS / "info.json").read_text()).get("case_path")
-    except (OSError, ValueError):
-        named = None
+    named = (record_or_none(run) or RunRecord()).case_path
     if named and (Path(named) / "case.toml").is_file():
         return Path(named)
     return layout.CASES_DIR / run.parent.name  # a moved folder, or a built-in case's run
@@ -77,8 +74,8 @@ def run_overlay(run: Path, dof: str, duration: float, **options) -> tuple[Overla
     the case's today (its model would be another body's); the overlay without the model, and
     why, where the model cannot be computed."""
     from floatfoam.case import load_case
-    from floatfoam.foam.stamps import stamped_with
     from floatfoam.hydrostatics.theory import theory_summary
+    from floatfoam.plan.stamps import stamped_with
 
     folder = _case_folder(run)
     if not (folder / "case.toml").is_file():

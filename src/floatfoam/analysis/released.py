@@ -15,15 +15,15 @@ roll, not a decay; a Cummins roll series holds 1e-17 m of heave).
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from floatfoam import dofs, layout
+from floatfoam import dofs
 from floatfoam.errors import InputError
+from floatfoam.plan.record import RunRecord, has_record, read_record
 
 #: Below this fraction of its scale (1 rad, or the body's size) a DoF's range is noise: four
 #: orders below the smallest release of any case (2° = 0.035 rad, elliptic_cylinder_capsize;
@@ -56,38 +56,28 @@ def run_folder(source: str | Path) -> Path | None:
     holding ``.floatfoam/info.json``; None for any other CSV."""
     path = Path(source)
     folder = path if path.is_dir() else path.parent
-    return folder if (folder / layout.MARKERS / "info.json").is_file() else None
+    return folder if has_record(folder) else None
 
 
-def run_info(run: Path) -> dict:
-    """A run folder's ``.floatfoam/info.json``; an InputError naming it when it is unreadable."""
-    path = Path(run) / layout.MARKERS / "info.json"
-    try:
-        return json.loads(path.read_text())
-    except (OSError, ValueError) as err:
-        raise InputError(f"run record {path}: {err}; valid is the info.json `floatfoam run` "
-                         "writes") from None
-
-
-def released_by_run(info: dict) -> tuple[str, ...]:
-    """The DoFs a run released, from its ``info.json`` (see the module docstring)."""
-    if isinstance(info.get("release"), dict):
-        names = tuple(d.name for d in dofs.released(info["release"]))
+def released_by_run(record: RunRecord) -> tuple[str, ...]:
+    """The DoFs a run released, from its record (see the module docstring)."""
+    if isinstance(record.release, dict):
+        names = tuple(d.name for d in dofs.released(record.release))
         if names:
             return names
-    angles = tuple(name for name, key in (("roll", "heel"), ("pitch", "trim"))
-                   if float(info.get(key) or 0.0) != 0.0)
+    angles = tuple(name for name, angle in (("roll", record.heel), ("pitch", record.trim))
+                   if float(angle or 0.0) != 0.0)
     return angles or ("heave",)
 
 
-def scale(dof: str, motion: dict, info: dict | None = None) -> tuple[float, str]:
+def scale(dof: str, motion: dict, info: RunRecord | None = None) -> tuple[float, str]:
     """The scale a DoF's motion is measured against, in file units (m, deg), and its words: 1
     rad for an angle; for heave the body's size (the run's ``body_size``), or, where the
     record does not give it, the largest height of G from the still water in the record (G
     lies within the body, which the waterline crosses), at least :data:`SMALLEST_BODY`."""
     if dofs.dof(dof).is_angle:
         return RADIAN_DEG, "1 rad"
-    size = (info or {}).get("body_size")
+    size = info.body_size if info is not None else None
     if size:
         return float(size), f"the body's size ({float(size):.3g} m)"
     z = np.asarray(motion.get(dofs.dof(dof).column, []), dtype=float)
@@ -104,13 +94,13 @@ def motion_range(dof: str, motion: dict) -> float:
     return float(finite.max() - finite.min()) if finite.size else 0.0
 
 
-def relative_motion(dof: str, motion: dict, info: dict | None = None) -> float:
+def relative_motion(dof: str, motion: dict, info: RunRecord | None = None) -> float:
     """A DoF's range over the record divided by its :func:`scale` (0 for a zero scale)."""
     size, _ = scale(dof, motion, info)
     return motion_range(dof, motion) / size if size > 0 else 0.0
 
 
-def check_motion(dof: str, motion: dict, info: dict | None, source: Path, option: str,
+def check_motion(dof: str, motion: dict, info: RunRecord | None, source: Path, option: str,
                  moving: tuple[str, ...] = ()) -> None:
     """Refuse (InputError, one line) a DoF whose range is below :data:`NOISE_FRACTION` of its
     :func:`scale`; ``option`` names how it was chosen (``--dof heave``), ``moving`` the DoFs
@@ -127,7 +117,7 @@ def check_motion(dof: str, motion: dict, info: dict | None, source: Path, option
                      f"{valid}")
 
 
-def moving_dofs(motion: dict, info: dict | None = None) -> tuple[str, ...]:
+def moving_dofs(motion: dict, info: RunRecord | None = None) -> tuple[str, ...]:
     """The DoFs of the record's columns above the noise (:func:`check_motion`'s rule)."""
     return tuple(name for name in dofs.NAMES if dofs.dof(name).column in motion
                  and relative_motion(name, motion, info) > NOISE_FRACTION)
@@ -138,7 +128,7 @@ def choose(source: str | Path, motion: dict, requested: str | None = None) -> Ch
     ones the run released, else the one that moves most relative to its scale; each checked
     to move above the noise (:func:`check_motion`)."""
     run = run_folder(source)
-    info = run_info(run) if run is not None else None
+    info = read_record(run) if run is not None else None
     moving = moving_dofs(motion, info)
     released = released_by_run(info) if info is not None else None
     if requested is not None:

@@ -22,7 +22,7 @@ def current_runs(case, build_dir: str | Path) -> tuple[list[tuple[str, Path]], l
     """:func:`cfd_runs` of ``case`` whose stamp is of the case's settings today (or that have
     none: made by hand), and the levels of those made with other settings (its case file, a
     --set or a default changed since): a run of other settings is not this case's CFD."""
-    from floatfoam.foam.stamps import stamped_with
+    from floatfoam.plan.stamps import stamped_with
 
     runs, foreign = [], []
     for level, motion in cfd_runs(case.name, build_dir):

@@ -5,15 +5,14 @@ DoF (:func:`theory_equilibrium`), and the first cycles by zero crossings
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
-from floatfoam import dofs, layout
+from floatfoam import dofs
 from floatfoam.analysis.decay import DecayResult
 from floatfoam.analysis.extrema import crossing_reduction
-from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
+from floatfoam.plan.record import record_or_none
 
 
 def theory_equilibrium(theory: TheorySummary, dof: str) -> float | None:
@@ -46,13 +45,12 @@ def settled_level(case, dof: str, run: Path, theory: TheorySummary) -> float | N
     """Where a run's body settles in ``dof``, in code units, when the physics gives it: in
     heave, the theory's equilibrium of G (the run's info.json), moved by the discrete body's
     own equilibrium shift at the run's mesh level (it displaces a little less than the exact
-    body: :func:`floatfoam.meshing.volume_report.discrete_volume_report`, the wedge's revolved
-    meridian for a body of revolution) and raised with the tank's water, which the body
-    displaces more of at equilibrium than at its release (A_wp × release / the tank's free
-    surface).
+    body; the run records it: :func:`floatfoam.foam.render.equilibrium_shift`) and raised
+    with the tank's water, which the body displaces more of at equilibrium than at its release
+    (A_wp × release / the tank's free surface).
 
-    None — the decay fit's level is used — for the angles, without the run's info or level,
-    when the discrete body's equilibrium cannot be solved, and where that rise exceeds
+    None — the decay fit's level is used — for the angles, without the run's info, when the
+    discrete body's equilibrium shift is not known, and where that rise exceeds
     :data:`SETTLED_RISE` of the release: in a 2D slab (1–3 % of it) the displaced water
     spreads along the tank for seconds while the first cycles pass, so the level they swing
     about is not yet the final one (flume_section_heave: the theory's level with the rise, the
@@ -63,28 +61,17 @@ def settled_level(case, dof: str, run: Path, theory: TheorySummary) -> float | N
     first 1.5 s agree with it within 0.04 mm (cases/lab_sphere/README.md)."""
     if dof != "heave":
         return None
-    try:
-        info = json.loads((Path(run) / layout.MARKERS / "info.json").read_text())
-    except (OSError, ValueError):
+    info = record_or_none(run)
+    if info is None or info.z_G_equilibrium is None or info.equilibrium_shift is None:
         return None
-    level = Path(run).name.split("-")[0]
-    if info.get("z_G_equilibrium") is None or level not in layout.LEVELS:
-        return None
-    from floatfoam.meshing.volume_report import discrete_volume_report
     from floatfoam.tank import tank
 
     box, area, release = tank(case), theory.waterplane_area, case.release["heave"]
     free = {"wedge": math.pi * box.half_length**2,
             "3d": 4 * box.half_length * box.half_width,
             "3d-half": 4 * box.half_length * box.half_width}.get(
-        info.get("mesh"), 2 * box.half_length * (case.body.length or 1.0)) - area
+        info.mesh, 2 * box.half_length * (case.body.length or 1.0)) - area
     rise = area * release / free
     if abs(rise) > SETTLED_RISE * abs(release):
         return None
-    try:
-        report = discrete_volume_report(case, level)
-    except (InputError, ValueError, RuntimeError):  # no discrete body to measure: the fit's
-        return None
-    if info.get("mesh") == "wedge":
-        report = report["meridian"]
-    return float(info["z_G_equilibrium"]) + report["equilibrium_shift"] + rise
+    return info.z_G_equilibrium + info.equilibrium_shift + rise

@@ -24,7 +24,7 @@ def current_study(case, build: Path | None = None) -> tuple[dict | None, list[st
     a study. The stamps are those the study recorded when it was made; a study that holds no
     stamps is checked against the stamps in the run folders. A run without a stamp (made by
     hand) leaves the study as it is."""
-    from floatfoam.foam.stamps import settings_digest, stamp_of
+    from floatfoam.plan.stamps import settings_digest, stamp_of
 
     study = read_study(case.name, build)
     if study is None:

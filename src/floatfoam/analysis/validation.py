@@ -29,7 +29,7 @@ the record, :func:`floatfoam.analysis.measured.record_fit`) it gives
   level itself;
 * the mesh-motion study: the coarse level once more with its mesh motion spread wider
   (``--morphing F``, :data:`DEFAULT_MORPHING` by default;
-  :func:`floatfoam.foam.morphing.scaled_morphing`): the six-DoF solver's distances times F, or
+  :func:`floatfoam.plan.morphing.scaled_morphing`): the six-DoF solver's distances times F, or
   the Laplacian's diffusivity 1/d instead of 1/d². The mesh motion is the same on every level,
   so neither GCI sees it; on the laboratory sphere the distances moved the damping more than
   the levels did. U_motion is the whole relative change of each quantity between the two
@@ -66,6 +66,7 @@ from floatfoam.analysis.settled import first_cycles, settled_level
 from floatfoam.analysis.uncertainty import STUDY_FILE
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.theory import theory_summary
+from floatfoam.plan.record import RunRecord, record_or_none
 
 TIME_STEP_DIVISOR = 2
 #: the level whose time steps are halved by default (module docstring: why); "fine" gives the
@@ -93,7 +94,7 @@ def plan(time_level: str = TIME_STEP_LEVEL,
         raise InputError(f"--time-level {time_level!r} is not a level whose time steps a "
                          "study halves; valid: " + ", ".join(TIME_STEP_LEVELS))
     if morphing is not None:
-        from floatfoam.foam.morphing import check_morphing
+        from floatfoam.plan.morphing import check_morphing
 
         check_morphing(morphing, study=True)
     runs = (("coarse", 1, 1.0), ("medium", 1, 1.0), ("fine", 1, 1.0),
@@ -128,7 +129,7 @@ def study_runs(case, build: Path, time_level: str = TIME_STEP_LEVEL,
     """(name, time-step divisor, morphing factor, run directory) of the study's runs that are
     finished. Raises InputError when one was run with other settings than ``case``'s (its case
     file and ``--set``): the study, its time order among them, is of one set of settings."""
-    from floatfoam.foam.stamps import stamped_with
+    from floatfoam.plan.stamps import stamped_with
 
     out = []
     for level, divisor, factor in plan(time_level, morphing):
@@ -170,17 +171,13 @@ def finished_morphing(case_name: str, build: Path) -> float | None:
     return float(factor) if layout.is_finished(run) else None
 
 
-def _info(run: Path) -> dict:
-    """What the driver recorded of a run when it rendered it (empty when it did not)."""
-    info_file = run / layout.MARKERS / "info.json"
-    return json.loads(info_file.read_text()) if info_file.is_file() else {}
 
 
 def _run_values(name: str, divisor: int, run: Path, dof: str,
                 morphing: float = 1.0, settled: float | None = None) -> RunValues:
-    info = _info(run)
-    dimension = 3 if str(info.get("mesh", "")).startswith("3d") else 2
-    out = RunValues(name, info.get("cells"), dimension, divisor, morphing)
+    info = record_or_none(run) or RunRecord()  # what the driver recorded, when it did
+    dimension = 3 if str(info.mesh or "").startswith("3d") else 2
+    out = RunValues(name, info.cells, dimension, divisor, morphing)
     try:
         time, value, result = analyse_run(run / "motion.csv", dof)
     except InputError as err:
@@ -290,7 +287,7 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
     """The study of ``case`` from its finished runs under ``build``: a JSON-ready dict.
     ``morphing``: the factor of its mesh-motion run (:func:`study_morphing`), None for a study
     without one."""
-    from floatfoam.foam.stamps import stamp_of
+    from floatfoam.plan.stamps import stamp_of
 
     build = Path(build or layout.build_dir())
     found = study_runs(case, build, time_level, morphing)
@@ -330,17 +327,18 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
 
 
 def mesh_motion_record(case, found, morphing: float | None) -> dict:
-    """How the study's runs moved their mesh (:func:`floatfoam.foam.motion_zone.mesh_motion` of
+    """How the study's runs moved their mesh (:func:`floatfoam.plan.zone.mesh_motion` of
     the case on its runs' mesh), and what its mesh-motion run varied: ``motion``
     ("laplacian", "distances"; None without a run's record), ``diffusivity`` (the
     Laplacian's, in words), ``factor``, ``run`` (its folder), ``variant`` (in words,
-    :func:`floatfoam.foam.morphing.morphing_variant`), ``studied`` (its run finished: U_motion
+    :func:`floatfoam.plan.morphing.morphing_variant`), ``studied`` (its run finished: U_motion
     joins U_num) and ``note``. ``found``: :func:`study_runs`."""
-    from floatfoam.foam.morphing import morphing_variant
-    from floatfoam.foam.motion_zone import mesh_motion
+    from floatfoam.plan.morphing import morphing_variant
+    from floatfoam.plan.zone import mesh_motion
     from floatfoam.settings import MOTION_DIFFUSIVITIES
 
-    kinds = [_info(run).get("mesh") for _, _, factor, run in found if factor == 1]
+    kinds = [(record_or_none(run) or RunRecord()).mesh for _, _, factor, run in found
+             if factor == 1]
     kind = next((k for k in kinds if k), None)
     motion = None if kind is None else mesh_motion(case, kind)
     record = {"motion": motion}

@@ -62,12 +62,12 @@ def run(args) -> int:
                          "overwritten)")
     if args.submit:
         slurm.require_sbatch()
-    from floatfoam.foam.render import end_time_of
     from floatfoam.hydrostatics.theory import equilibrium
+    from floatfoam.plan.release import end_time_of
 
     cases = [load_case(name, args.overrides) for name in args.cases]  # each checked now
     from floatfoam.foam.domain import plan
-    from floatfoam.foam.render import release_state
+    from floatfoam.plan.release import release_state
 
     end_times = {}
     for case in cases:

@@ -8,7 +8,6 @@ from pathlib import Path
 from floatfoam.cli.common import add_case_arguments, add_level_argument, add_np_argument
 from floatfoam.errors import InputError
 from floatfoam.interrupts import SignalInterruptError
-from floatfoam.layout import LEVELS
 
 EXIT_LOCKED = 75  # EX_TEMPFAIL (sysexits.h): another run holds the directory, try later
 
@@ -39,19 +38,16 @@ def run(args) -> int:
     75 another run holds the run directory, 128 + signal when interrupted (130 SIGINT,
     143 SIGTERM, 129 SIGHUP)."""
     from floatfoam.case import load_case
-    from floatfoam.foam.driver import run_case
+    from floatfoam.foam.driver import run_plan
     from floatfoam.foam.runlock import RunLockedError
     from floatfoam.foam.runner import RunError
-    from floatfoam.hydrostatics.theory import equilibrium
+    from floatfoam.plan.runplan import resolve
 
     try:
         case = load_case(args.case, args.overrides)
-        if args.level not in LEVELS:
-            raise InputError(f"--level {args.level!r}: valid levels are {', '.join(LEVELS)}")
-        eq = equilibrium(case)  # solved once, handed to the rendering and the summary
-        result = run_case(case, args.level, args.np, args.force, equilibrium=eq,
-                          hostfile=args.hostfile, time_step_divisor=args.dt_divisor,
-                          morphing=args.morphing)
+        plan = resolve(case, args.level, args.np, hostfile=args.hostfile,
+                       divisor=args.dt_divisor, morphing=args.morphing)
+        result = run_plan(plan, args.force)
     except RunError as err:
         _say(f"floatfoam run: {err}")
         return 1
@@ -64,7 +60,7 @@ def run(args) -> int:
         return err.exit_code
     if result.already_finished:
         print(f"{result.run_dir} holds a finished run (use --force to run it again).")
-    print_summary(case, result, eq)
+    print_summary(case, result, plan.equilibrium)
     return 0
 
 

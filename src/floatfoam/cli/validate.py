@@ -99,7 +99,7 @@ def _submit(case, args, runs, morphing: float | None) -> int:
     study of what finished, as the local command writes it) as a job after the array."""
     from floatfoam import layout
     from floatfoam.cluster import jobs, slurm
-    from floatfoam.foam.render import end_time_of
+    from floatfoam.plan.release import end_time_of
 
     args.time = slurm.check_time(args.time or "24:00:00")
     slurm.require_sbatch()

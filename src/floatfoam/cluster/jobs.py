@@ -25,6 +25,7 @@ from floatfoam.cluster import slurm
 from floatfoam.cluster.slurm import Task
 from floatfoam.errors import ComputationError, InputError
 from floatfoam.jsonfile import dump_json
+from floatfoam.plan.record import record_or_none
 
 JOBS_DIR = "slurm"
 RECORD = "record.json"
@@ -228,9 +229,9 @@ def summary(record: dict, build: Path | None = None) -> list[dict]:
         run_dir = Path(row["run_dir"])
         entry = {"task": row["task"], "case": row["case"], "run": row["run"],
                  "finished": row["state"] == "finished", "time": row["time"], "dofs": {}}
-        info = run_dir / layout.MARKERS / "info.json"
-        if info.is_file():
-            entry["cells"] = json.loads(info.read_text()).get("cells")
+        record = record_or_none(run_dir)
+        if record is not None:
+            entry["cells"] = record.cells
         motion_csv = run_dir / "motion.csv"
         dofs, motion = (), None
         if entry["finished"] and motion_csv.is_file():

@@ -6,9 +6,8 @@
 * :mod:`~floatfoam.foam.runner`: the one runner of OpenFOAM applications (logs, MPI, progress,
   divergence, motion.csv as the solver goes); :mod:`~floatfoam.foam.logwatch` reads its log;
 * :mod:`~floatfoam.foam.driver`: ``floatfoam run``, render → mesh → initialise → solve,
-  resumable; :mod:`~floatfoam.foam.ranks` its MPI ranks (the --np default),
-  :mod:`~floatfoam.foam.stamps` what a run is of (its solver, settings digest and stamp),
-  :mod:`~floatfoam.foam.morphing` its mesh motion spread for a study;
+  resumable, from a run's plan (:mod:`floatfoam.plan`); :mod:`~floatfoam.foam.ranks` its MPI
+  ranks (the --np default);
 * :mod:`~floatfoam.foam.paraview`: the run as ParaView opens it (``<case>.foam``,
   reconstructPar, foamToVTK);
 * :mod:`~floatfoam.foam.meshcheck`: gmshToFoam + checkMesh on a gmsh mesh;

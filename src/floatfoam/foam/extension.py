@@ -1,7 +1,7 @@
 """A run asked for another end time than the one it was made to (``--set run.end_time``).
 
 run.end_time says only how far a run goes: a run's stamp
-(:func:`floatfoam.foam.stamps.settings_digest`) leaves it out, and the run's own end time is
+(:func:`floatfoam.plan.stamps.settings_digest`) leaves it out, and the run's own end time is
 in its ``.floatfoam/info.json``. A run folder of the command's settings asked for another end
 time
 
@@ -24,8 +24,8 @@ time
 
 from __future__ import annotations
 
-import json
 import math
+from dataclasses import replace
 from pathlib import Path
 
 from floatfoam import layout
@@ -33,6 +33,7 @@ from floatfoam.errors import InputError
 from floatfoam.foam.paraview import RECONSTRUCT
 from floatfoam.foam.render import write_interval
 from floatfoam.foam.timedirs import latest_time
+from floatfoam.plan.record import read_record, record_or_none, write_record
 
 CONTINUE = "continue"  # the run goes on to the end time asked
 KEEP = "keep"  # a finished run past the end time asked: kept as it is
@@ -44,8 +45,8 @@ SAME_TIME = 1e-9
 def own_end_time(run_dir: Path) -> float | None:
     """The end time the run in ``run_dir`` goes to (its info.json); None before it was
     rendered."""
-    info = Path(run_dir) / layout.MARKERS / "info.json"
-    return json.loads(info.read_text()).get("end_time") if info.is_file() else None
+    record = record_or_none(run_dir)
+    return record.end_time if record is not None else None
 
 
 def end_change(asked: float, run_dir: Path, finished: bool) -> str | None:
@@ -83,10 +84,5 @@ def continue_to(run_dir: Path, end_time: float, interval: float) -> float:
     control = FoamFile(run_dir / "system" / "controlDict")
     control["endTime"] = end_time
     control["writeInterval"] = write_interval(left, min(interval, left))
-    info_file = run_dir / layout.MARKERS / "info.json"
-    info = json.loads(info_file.read_text())
-    info["end_time"] = end_time
-    fresh = info_file.with_name(info_file.name + ".new")
-    fresh.write_text(json.dumps(info, indent=2))
-    fresh.replace(info_file)
+    write_record(run_dir, replace(read_record(run_dir), end_time=end_time))
     return restart

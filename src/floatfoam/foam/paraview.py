@@ -22,6 +22,7 @@ from pathlib import Path
 from floatfoam import layout
 from floatfoam.errors import InputError
 from floatfoam.foam import runner
+from floatfoam.plan.record import has_record
 
 RECONSTRUCT = "reconstructPar"  # the driver's step (its marker), and the application
 VTK_DIR = "VTK"  # where foamToVTK writes, in the run folder
@@ -61,8 +62,7 @@ def check_export(run_dir: Path, *, force: bool = False) -> Path:
     ``floatfoam run``, or whose ``VTK`` folder exists without ``force``. Returns the folder
     the export writes."""
     run = Path(run_dir)
-    info = run / layout.MARKERS / "info.json"
-    if not (run / "system" / "controlDict").is_file() or not info.is_file():
+    if not (run / "system" / "controlDict").is_file() or not has_record(run):
         raise InputError(f"RUN {run}: no run of floatfoam run (no system/controlDict and "
                          f"{layout.MARKERS}/info.json); valid is a run folder, "
                          "<build>/<case>/<level>")

@@ -15,37 +15,17 @@ from pathlib import Path
 import numpy as np
 from foamlib import FoamFile
 
-from floatfoam.bodies.geometry import rotation
 from floatfoam.case import Case
-from floatfoam.dofs import free_dofs, released
+from floatfoam.dofs import free_dofs
 from floatfoam.errors import InputError
 from floatfoam.foam import domain
 from floatfoam.foam.dictionaries import write_dict
 from floatfoam.foam.domain import RunMesh
 from floatfoam.foam.patches import write_initial_fields
-from floatfoam.hydrostatics.fluid_domain import check_release
-from floatfoam.hydrostatics.theory import Equilibrium
 from floatfoam.layout import COMMON_DIR
+from floatfoam.plan.record import RunRecord
+from floatfoam.plan.runplan import RunPlan
 from floatfoam.settings import time_scheme_coefficient
-
-
-def release_state(case: Case, eq: Equilibrium) -> dict:
-    """The body at release, from the case's equilibrium ``eq``: its pose (the equilibrium
-    attitude plus the [release] offsets, :func:`floatfoam.tank.pose`), the centre of
-    mass there (earth frame), its attitude as a rotation tensor, and the equilibrium's z of G
-    and attitude (the reference of the motion series' angles). Raises InputError for a
-    release outside the tank (:func:`floatfoam.hydrostatics.fluid_domain.check_release`),
-    before the run plans its mesh or writes anything."""
-    where = check_release(case, eq)
-    attitude = rotation(where.heel, where.trim)
-    cog = attitude @ case.cog + np.array([0.0, 0.0, where.z_c])
-    reference = rotation(eq.heel, eq.trim)
-    g_eq = reference @ case.cog + np.array([0.0, 0.0, eq.z_c])
-    return {"pose": where, "centre_z": where.z_c, "cog": cog, "orientation": attitude,
-            "z_G_equilibrium": float(g_eq[2]), "equilibrium_orientation": reference,
-            "heel": math.radians(case.release["heel"]),
-            "trim": math.radians(case.release["trim"])}
-
 
 SCOTCH = Path("/usr/lib/libscotchDecomp.so")
 SCOTCH_STUB = b"This message is from the dummy scotchDecomp stub library"
@@ -88,15 +68,19 @@ def write_interval(end_time: float, requested: float) -> float:
     return end_time / math.ceil(end_time / requested - 1e-9)
 
 
-def render(case: Case, level: str, run_dir: Path, state: dict, mesh: RunMesh, *,
-           np_: int = 1) -> dict:
-    """Write the run directory for the release ``state`` (:func:`release_state`) on ``mesh``
-    (:mod:`floatfoam.foam.domain`); returns what the driver needs (end time, cells, state)."""
+def render(plan: RunPlan, mesh: RunMesh) -> RunRecord:
+    """Write the plan's run directory (:mod:`floatfoam.plan.runplan`) on ``mesh``
+    (:mod:`floatfoam.foam.domain`); returns the run's record (:mod:`floatfoam.plan.record`):
+    its end time, cells, mesh kind and the body patch's immersed volume error, the release
+    (:func:`floatfoam.plan.release.release_state`, and what [release] asked), the body's size
+    (m, `floatfoam analyse`'s default DoFs), the case's file (for analyse's model) and the
+    discrete body's equilibrium shift (:func:`equilibrium_shift`)."""
+    case, run_dir, state, np_ = plan.case, plan.run_dir, plan.state, plan.np
     run_dir.mkdir(parents=True, exist_ok=True)
     for sub in ("system", "constant"):
         shutil.copytree(COMMON_DIR / sub, run_dir / sub, dirs_exist_ok=True)
     domain.write(mesh, run_dir)
-    end_time = end_time_of(case)
+    end_time = plan.end_time
     _control(case, run_dir, mesh, end_time)
     _solution(case, run_dir, mesh)
     _fluid(case, run_dir)
@@ -112,9 +96,29 @@ def render(case: Case, level: str, run_dir: Path, state: dict, mesh: RunMesh, *,
     decompose["numberOfSubdomains"] = np_
     for key, value in decomposition(np_, mesh.extents).items():
         decompose[key] = value
-    return {"end_time": end_time, "cells": mesh.cells, "mesh": mesh.kind,
-            "immersed_error": mesh.immersed_error,
-            **{k: v for k, v in state.items() if k != "pose"}}
+    return RunRecord.from_dict(
+        {k: v for k, v in state.items() if k != "pose"}
+        | {"end_time": end_time, "cells": mesh.cells, "mesh": mesh.kind,
+           "immersed_error": mesh.immersed_error, "release": dict(case.release),
+           "body_size": case.body.size, "case_path": str(case.path),
+           "equilibrium_shift": equilibrium_shift(case, plan.level, mesh.kind,
+                                                  plan.equilibrium)})
+
+
+def equilibrium_shift(case: Case, level: str, kind: str, equilibrium) -> float | None:
+    """How far the discrete body at ``level`` settles from the exact one's equilibrium, in z
+    of G (m): it displaces a little less than the exact body
+    (:func:`floatfoam.meshing.volume_report.discrete_volume_report`, the revolved meridian in a
+    wedge). None where there is no discrete body to measure."""
+    from floatfoam.meshing.volume_report import discrete_volume_report
+
+    try:
+        report = discrete_volume_report(case, level, equilibrium)
+    except (InputError, ValueError, RuntimeError):
+        return None
+    if kind == "wedge":
+        report = report["meridian"]
+    return float(report["equilibrium_shift"])
 
 
 # pcorr, the flux correction after each of a step's three mesh motions, by GAMG on gmsh's
@@ -126,30 +130,6 @@ def render(case: Case, level: str, run_dir: Path, state: dict, mesh: RunMesh, *,
 # 1 s: 16 → 19 s) and the half tanks (ellipsoid_roll 0.08 s: 18 → 19 s).
 PCORR_BY_GAMG = ("2d", "3d")
 PCORR_GAMG = {"solver": "GAMG", "smoother": "DIC", "tolerance": 1e-6, "relTol": 0}
-
-# Added mass lengthens the theory's periods (which have none): measured with Cummins' model
-# (`floatfoam decay-model --model cummins`) up to +43 % in heave (the flat elliptic section,
-# 0.80 s against 0.56 s) and +11 % in roll (the same section, 0.868 s against 0.785 s).
-PERIOD_ALLOWANCE = {"heave": 1.5, "roll": 1.15, "pitch": 1.15}
-DEFAULT_PERIODS = 5
-
-
-def end_time_of(case: Case) -> float:
-    """``run.end_time``, else :data:`DEFAULT_PERIODS` periods of the slowest released DoF:
-    the theory's period × :data:`PERIOD_ALLOWANCE` for the added mass."""
-    if case.settings.run.end_time is not None:
-        return case.settings.run.end_time
-    from floatfoam.hydrostatics.theory import theory_summary
-
-    theory = theory_summary(case)
-    periods = [(theory.period(d.name) or math.nan) * PERIOD_ALLOWANCE[d.name]
-               for d in released(case.release) or released({"heave": 1.0})]
-    finite = [p for p in periods if math.isfinite(p) and p > 0.0]
-    if not finite:
-        raise InputError("run.end_time is missing and the theory gives no period of the "
-                         "released DoF to set it from (it capsizes); valid: run.end_time = "
-                         "<simulated seconds>")
-    return round(DEFAULT_PERIODS * max(finite), 2)
 
 
 def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
@@ -231,7 +211,7 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | Non
     equilibrium (``state["mesh_offset"]``) gets G there as the initial centre of mass.
 
     The mesh follows the body as ``mesh.motion`` says
-    (:func:`floatfoam.foam.motion_zone.mesh_motion`): the six-DoF motion solver with its
+    (:func:`floatfoam.plan.zone.mesh_motion`): the six-DoF motion solver with its
     distances, or ``displacementLaplacian`` (its diffusivity :data:`LAPLACIAN_DIFFUSIVITY` of
     ``run.motion_diffusivity``) whose body
     patch carries the same six-DoF dictionary as its point displacement condition

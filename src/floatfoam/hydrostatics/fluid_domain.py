@@ -12,7 +12,7 @@ inside the case's tank. The one home of these checks; every command goes through
   ``domain.depth`` or its deep-water default) and below its top (``domain.air_height`` or its
   default). Every command that takes a release calls it before it computes or writes
   anything: decay-model (:func:`floatfoam.potential.models.decay_series`), run and the
-  studies' checks (:func:`floatfoam.foam.render.release_state`), mesh at the release pose.
+  studies' checks (:func:`floatfoam.plan.release.release_state`), mesh at the release pose.
   One tank for all of them: a release the models accept is one the CFD can start from.
 
 A body released wholly above the water is not refused: that is a drop, and a valid one —

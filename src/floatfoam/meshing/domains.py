@@ -4,7 +4,8 @@ Kinds: ``2d`` (2D sections, one cell thick), ``wedge`` (bodies of revolution abo
 ``3d`` (any body), ``3d-half`` (x ≥ 0 and a symmetry plane x = 0 for a heel or a heave, y ≥ 0
 and y = 0 for a trim: a body symmetric about that plane, an STL's found so from its
 triangles, and a motion that keeps it). ``auto`` takes 2d for a
-section, wedge for an upright body of revolution, 3d-half where it can, 3d otherwise.
+section, wedge for an upright body of revolution, 3d-half where it can, 3d otherwise
+(:func:`floatfoam.plan.kind.default_kind`).
 """
 
 from __future__ import annotations
@@ -21,52 +22,10 @@ from floatfoam.meshing import body_surface
 from floatfoam.meshing.domain3d import domain_3d
 from floatfoam.meshing.levels import mesh_spec
 from floatfoam.meshing.planar import even_polygon, planar_domain
+from floatfoam.plan.kind import check_layers, default_kind, half_plane
 from floatfoam.tank import Pose, pose, tank
 
 KINDS = ("auto", "2d", "wedge", "3d", "3d-half")
-
-
-def default_kind(case, where: Pose) -> str:
-    """The lightest domain that represents the case at this pose."""
-    if case.body.is_section and where.trim == 0.0:
-        return "2d"
-    if case.body.is_axisymmetric and where.heel == 0.0 and where.trim == 0.0 \
-            and _frees_only(case, ("heave",)):
-        return "wedge"
-    return "3d-half" if half_plane(case, where) else "3d"
-
-
-def _frees_only(case, names) -> bool:
-    """``[motion] free`` (when given) names none but ``names``."""
-    return all(name in names for name in case.settings.motion.free or ())
-
-
-def half_plane(case, where: Pose) -> str | None:
-    """The symmetry plane the body and its motion keep, "x" (x = 0: no trim, no DoF freed
-    out of the (y, z) plane) or "y" (y = 0: no heel, none out of the (x, z) plane), for a
-    body symmetric about it (an ellipsoid or sphere about both; a body given by triangles, STL
-    or implicit, where :func:`floatfoam.bodies.mirror.mirror_planes` finds it) with G on it;
-    None otherwise, or when ``mesh.gmsh.half_3d`` is false."""
-    if not case.settings.mesh.gmsh.half_3d:
-        return None
-    planes = case.body.mirror_planes
-    if "x" in planes and where.trim == 0.0 and case.cog[0] == 0.0 \
-            and _frees_only(case, ("heave", "roll", "sway")):
-        return "x"
-    if "y" in planes and where.heel == 0.0 and case.cog[1] == 0.0 \
-            and _frees_only(case, ("heave", "pitch", "surge")):
-        return "y"
-    return None
-
-
-def check_layers(case, kind: str) -> None:
-    """Prism layers (``mesh.gmsh.layers_3d``) are made in 3D domains only: asked for in a
-    2D slab or a wedge they are refused, not silently left out."""
-    layers = case.settings.mesh.gmsh.layers_3d
-    if layers and kind not in ("3d", "3d-half"):
-        raise InputError(f"mesh.gmsh.layers_3d = {layers}: prism layers are made in 3D domains "
-                         f"only, and {case.name} meshes a {kind} domain at its release; valid "
-                         "is 0")
 
 
 def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release",

@@ -24,8 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from floatfoam.case import Case
-from floatfoam.errors import InputError
-from floatfoam.layout import LEVELS
+from floatfoam.plan.level import level_index, refinement_ratio
 from floatfoam.tank import body_extents
 
 
@@ -65,17 +64,6 @@ class MeshSpec:
     def refine(self, count: float) -> int:
         """A coarse-level cell count at this level: round(count r^index), at least 1."""
         return max(1, round(count * self.ratio**self.index))
-
-
-def level_index(level: str) -> int:
-    if level not in LEVELS:
-        raise InputError(f"--level {level!r}: valid levels are {', '.join(LEVELS)}")
-    return LEVELS.index(level)
-
-
-def refinement_ratio(case: Case) -> float:
-    """The ratio r between consecutive levels: ``mesh.refinement_ratio`` (default √2), > 1."""
-    return case.settings.mesh.refinement_ratio
 
 
 def mesh_spec(case: Case, level: str) -> MeshSpec:

@@ -10,7 +10,8 @@ import math
 from floatfoam import settings
 from floatfoam.case import Case
 from floatfoam.errors import InputError
-from floatfoam.foam import domain
+from floatfoam.plan import zone
+from floatfoam.tank import Pose
 
 
 def check_morphing(factor: float, *, study: bool = False) -> None:
@@ -27,13 +28,14 @@ def check_morphing(factor: float, *, study: bool = False) -> None:
                          "the Laplacian's diffusivity 1/d instead of 1/d²)")
 
 
-def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool = True) -> Case:
-    """The case with its mesh motion (:func:`floatfoam.foam.motion_zone.mesh_motion`) spread wider
+def scaled_morphing(case: Case, release: Pose, factor: float) -> Case:
+    """The case with its mesh motion (:func:`floatfoam.plan.zone.mesh_motion`, the body at
+    ``release``) spread wider
     or narrower by ``factor`` > 0 (:func:`morphing_variant` says how, in words):
 
     * the six-DoF solver's distances — the mesh moves rigidly with the body within
       run.inner_distance and is fixed beyond run.outer_distance, or their defaults from the
-      body and the tank (:mod:`floatfoam.foam.domain`) — both multiplied by ``factor``, or
+      body and the tank (:func:`floatfoam.plan.zone.distances`) — both multiplied by ``factor``, or
       divided by it where the defaults already reach as far as the tank allows
       (:func:`distance_factor`);
     * the Laplacian, for ``factor`` > 1: run.motion_diffusivity "linear", whose 1/d spreads
@@ -49,7 +51,7 @@ def scaled_morphing(case: Case, level: str, pose, factor: float, *, local: bool 
         return case
     from floatfoam.case import with_overrides
 
-    mesh = domain.plan(case, level, pose, local=local)
+    mesh = zone.of_case(case, release)
     if mesh.motion == "distances":
         scale = distance_factor(case, factor)
         return with_overrides(case, [f"run.inner_distance={mesh.inner * scale!r}",
@@ -62,7 +64,7 @@ def distance_factor(case: Case, factor: float) -> float:
     """What the six-DoF distances are multiplied by in a run of mesh-motion factor ``factor``:
     ``factor`` itself, but 1 / ``factor`` for a widening (``factor`` > 1) of the defaults,
     whose outer distance already reaches 0.9 × the room to the tank's nearest held wall
-    (:func:`floatfoam.foam.motion_zone.distances`): widened, the zone would squeeze the walls'
+    (:func:`floatfoam.plan.zone.distances`): widened, the zone would squeeze the walls'
     first cells; narrowed as much, it says as much of the distances' effect."""
     return 1.0 / factor if factor > 1 and case.settings.run.outer_distance is None else factor
 

@@ -12,11 +12,12 @@ from pathlib import Path
 from floatfoam import fields, layout, settings
 from floatfoam.case import Case
 from floatfoam.errors import InputError
-from floatfoam.foam import domain
-from floatfoam.foam.render import release_state
+from floatfoam.plan import zone
+from floatfoam.tank import Pose
 
 
-def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float = 1.0) -> str:
+def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float = 1.0,
+                    release: Pose | None = None) -> str:
     """Hash of what a run depends on: the case file, the values it resolves to with the
     defaults (a changed default makes every run made at the former one another run's) and the
     mesh motion they resolve to (:func:`_resolved_motion`), the level, the time-step divisor
@@ -24,7 +25,8 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     the case's words ([case] title, description, and the name of the case it extends: its
     tables are in), nor its [reference] measurements: adding a measurement must not make a
     finished run look foreign; nor run.end_time, which says only how far the run goes (its
-    own is in its info.json: :mod:`floatfoam.foam.extension`)."""
+    own is in its info.json: :mod:`floatfoam.foam.extension`). ``release``: the body's pose
+    at release when already solved (:func:`floatfoam.plan.release.release_state`)."""
     stamp = fields.stamped(case.settings)
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()
@@ -39,7 +41,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     resolved = {"settings": stamp, "release": case.release,
                 "mass": case.mass, "cog": case.cog, "gyradius": case.gyradius, "rho": case.rho,
                 "nu": case.nu, "g": case.g, "depth": case.depth, "rho_air": case.rho_air,
-                "nu_air": case.nu_air, "mesh_motion": _resolved_motion(case, level)}
+                "nu_air": case.nu_air, "mesh_motion": _resolved_motion(case, release)}
     run = {"case": raw, "resolved": resolved, "level": level, "divisor": divisor,
            "morphing": morphing}
     digest = hashlib.sha256(json.dumps(run, sort_keys=True, default=_plain).encode())
@@ -50,15 +52,18 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     return digest.hexdigest()[:16]
 
 
-def _resolved_motion(case: Case, level: str) -> list | None:
+def _resolved_motion(case: Case, release: Pose | None) -> list | None:
     """How the run's mesh follows the body once "auto" and the distances' defaults are
-    resolved (:func:`floatfoam.foam.motion_zone.mesh_motion`, ``distances``): ["laplacian"], or
-    ["distances", inner, outer]; a rule that resolves them otherwise makes the runs made
-    before it foreign. None when the case has no mesh plan (its input is refused there)."""
-    from floatfoam.hydrostatics.theory import equilibrium
-
+    resolved (:func:`floatfoam.plan.zone.of_case`): ["laplacian"], or ["distances", inner,
+    outer]; a rule that resolves them otherwise makes the runs made before it foreign. None
+    when the case's release or tank is refused (so is its run)."""
     try:
-        mesh = domain.plan(case, level, release_state(case, equilibrium(case))["pose"])
+        if release is None:
+            from floatfoam.hydrostatics.theory import equilibrium
+            from floatfoam.plan.release import release_state
+
+            release = release_state(case, equilibrium(case))["pose"]
+        mesh = zone.of_case(case, release)
     except InputError:
         return None
     if mesh.motion != "distances":

@@ -5,9 +5,54 @@ the outer one —, by default from the body and the tank (:func:`distances`,
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
 from floatfoam.case import Case
-from floatfoam.errors import InputError
-from floatfoam.tank import Pose
+from floatfoam.errors import InputError, required
+from floatfoam.tank import Pose, body_extents, tank
+
+
+@dataclass(frozen=True)
+class MeshMotion:
+    """How a run's mesh follows the body: ``motion`` "laplacian" or "distances"
+    (:func:`mesh_motion`), and the six-DoF solver's ``inner`` and ``outer`` distances (m,
+    :func:`distances`; used by "distances" only)."""
+
+    motion: str
+    inner: float
+    outer: float
+
+
+def of_case(case: Case, release: Pose) -> MeshMotion:
+    """The mesh motion of ``case`` with the body at ``release`` in the domain it is meshed in
+    (:func:`floatfoam.plan.kind.kind_of`)."""
+    from floatfoam.plan.kind import kind_of
+
+    return resolve(case, release, kind_of(case, release))
+
+
+def resolve(case: Case, release: Pose, kind: str) -> MeshMotion:
+    """The mesh motion of ``case`` in a domain of ``kind`` ("ogrid", "2d", "wedge", "3d",
+    "3d-half": :mod:`floatfoam.plan.kind`) with the body at ``release``: the O-grid's zone
+    reaches from its square (``mesh.square_half_size``) to the [domain]'s walls, a gmsh
+    mesh's from the body's smallest dimension across to the tank's (:func:`floatfoam.tank.tank`;
+    its sides are held in 3D only). Raises InputError for a setting missing or a tank without
+    room."""
+    if kind == "ogrid":
+        mesh, domain = case.settings.mesh, case.settings.domain
+        depth = case.depth if math.isfinite(case.depth) else required(domain.depth,
+                                                                       "domain.depth")
+        walls = [required(domain.air_height, "domain.air_height"), depth,
+                 required(domain.half_length, "domain.half_length")]
+        length = required(mesh.square_half_size, "mesh.square_half_size")
+    else:
+        box = tank(case)
+        walls = [box.air_height, box.depth, box.half_length] + (
+            [box.half_width] if kind.startswith("3d") else [])
+        length = float(body_extents(case.body).min())
+    inner, outer = distances(case, length, clearance(case, release, walls, kind))
+    return MeshMotion(mesh_motion(case, kind), inner, outer)
 
 
 def mesh_motion(case: Case, kind: str) -> str:

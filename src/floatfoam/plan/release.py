@@ -1,0 +1,103 @@
+"""Where a run starts and how long it goes, from the case and its equilibrium: the body at its
+release (:func:`release_state`), the pose its mesh is made at (:func:`mesh_pose`), the
+simulated time (:func:`end_time_of`) and a time-step study's smaller steps
+(:func:`smaller_steps`). Each is checked before anything is written."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from floatfoam.bodies.geometry import rotation
+from floatfoam.case import Case
+from floatfoam.dofs import released
+from floatfoam.errors import InputError
+from floatfoam.hydrostatics.fluid_domain import check_release
+from floatfoam.hydrostatics.theory import Equilibrium
+
+
+def release_state(case: Case, eq: Equilibrium) -> dict:
+    """The body at release, from the case's equilibrium ``eq``: its pose (the equilibrium
+    attitude plus the [release] offsets, :func:`floatfoam.tank.pose`), the centre of
+    mass there (earth frame), its attitude as a rotation tensor, and the equilibrium's z of G
+    and attitude (the reference of the motion series' angles). Raises InputError for a
+    release outside the tank (:func:`floatfoam.hydrostatics.fluid_domain.check_release`),
+    before the run plans its mesh or writes anything."""
+    where = check_release(case, eq)
+    attitude = rotation(where.heel, where.trim)
+    cog = attitude @ case.cog + np.array([0.0, 0.0, where.z_c])
+    reference = rotation(eq.heel, eq.trim)
+    g_eq = reference @ case.cog + np.array([0.0, 0.0, eq.z_c])
+    return {"pose": where, "centre_z": where.z_c, "cog": cog, "orientation": attitude,
+            "z_G_equilibrium": float(g_eq[2]), "equilibrium_orientation": reference,
+            "heel": math.radians(case.release["heel"]),
+            "trim": math.radians(case.release["trim"])}
+
+
+# Added mass lengthens the theory's periods (which have none): measured with Cummins' model
+# (`floatfoam decay-model --model cummins`) up to +43 % in heave (the flat elliptic section,
+# 0.80 s against 0.56 s) and +11 % in roll (the same section, 0.868 s against 0.785 s).
+PERIOD_ALLOWANCE = {"heave": 1.5, "roll": 1.15, "pitch": 1.15}
+
+
+DEFAULT_PERIODS = 5
+
+
+def end_time_of(case: Case) -> float:
+    """``run.end_time``, else :data:`DEFAULT_PERIODS` periods of the slowest released DoF:
+    the theory's period × :data:`PERIOD_ALLOWANCE` for the added mass."""
+    if case.settings.run.end_time is not None:
+        return case.settings.run.end_time
+    from floatfoam.hydrostatics.theory import theory_summary
+
+    theory = theory_summary(case)
+    periods = [(theory.period(d.name) or math.nan) * PERIOD_ALLOWANCE[d.name]
+               for d in released(case.release) or released({"heave": 1.0})]
+    finite = [p for p in periods if math.isfinite(p) and p > 0.0]
+    if not finite:
+        raise InputError("run.end_time is missing and the theory gives no period of the "
+                         "released DoF to set it from (it capsizes); valid: run.end_time = "
+                         "<simulated seconds>")
+    return round(DEFAULT_PERIODS * max(finite), 2)
+
+
+def mesh_pose(case: Case, state: dict, equilibrium: Equilibrium):
+    """The pose the mesh is made at (``[run] mesh_pose``): the release's, or the
+    equilibrium's for a heave release, whose offset to the release then goes in ``state``
+    (``mesh_offset``, m) for the render and the move before the first step
+    (:mod:`floatfoam.foam.meshpose`). Raises InputError for a heel or trim release or the
+    O-grid, which that move does not serve."""
+    if case.settings.run.mesh_pose == "release":
+        return state["pose"]
+    if case.release["heel"] or case.release["trim"]:
+        raise InputError("run.mesh_pose = 'equilibrium' moves the mesh in heave only; valid "
+                         "with a heel or trim release is run.mesh_pose = 'release'")
+    if case.settings.run.static_body:
+        raise InputError("run.mesh_pose = 'equilibrium' moves the mesh with the six-DoF "
+                         "solver; valid with run.static_body = true is run.mesh_pose = "
+                         "'release'")
+    if case.settings.mesh.mesher == "ogrid":
+        raise InputError("run.mesh_pose = 'equilibrium' needs a gmsh mesh; valid with "
+                         "mesh.mesher = 'ogrid' is run.mesh_pose = 'release'")
+    from floatfoam.tank import pose
+
+    made = pose(case, "equilibrium", equilibrium)
+    state["mesh_offset"] = [0.0, 0.0, float(state["pose"].z_c - made.z_c)]
+    return made
+
+
+def smaller_steps(case: Case, divisor: int) -> Case:
+    """The case with its time-step limits (run.max_delta_t, run.max_courant and
+    run.max_alpha_courant) divided by ``divisor``, a whole number ≥ 1."""
+    if isinstance(divisor, bool) or not isinstance(divisor, int) or divisor < 1:
+        raise InputError(f"--dt-divisor {divisor!r}: valid is a whole number ≥ 1")
+    if divisor == 1:
+        return case
+    from floatfoam.case import with_overrides
+
+    run = case.settings.run
+    limits = {"max_delta_t": run.max_delta_t, "max_courant": run.max_courant,
+              "max_alpha_courant": run.max_alpha_courant}
+    return with_overrides(case, [f"run.{key}={value / divisor!r}"
+                                 for key, value in limits.items() if value is not None])
