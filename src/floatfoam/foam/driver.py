@@ -38,7 +38,7 @@ from floatfoam.foam.timedirs import latest_time, set_aside_incomplete
 from floatfoam.hydrostatics.theory import Equilibrium
 from floatfoam.plan.record import RunRecord, read_record, write_record
 from floatfoam.plan.runplan import RunPlan, resolve
-from floatfoam.plan.stamps import solver_path
+from floatfoam.plan.stamps import solver_path, stamp_words, write_stamp
 from floatfoam.scratch import scratch_dir
 
 
@@ -71,9 +71,7 @@ def existing(plan: RunPlan) -> tuple[bool | None, str | None]:
     if not run_dir.exists():
         return None, None
     finished = layout.is_finished(run_dir)
-    stamp = run_dir / layout.MARKERS / "settings"
-    old = (stamp.read_text().split() if stamp.exists() else []) + ["?", "?"]
-    if old[0] != plan.digest or old[1] != str(plan.np):
+    if stamp_words(run_dir) != (plan.digest, str(plan.np)):
         what = "a finished run" if finished else "an unfinished run"
         raise InputError(f"{run_dir} holds {what} with other settings (or --np); valid: "
                          "the same settings to resume, or `floatfoam run` with --force to "
@@ -97,8 +95,7 @@ def prepare(plan: RunPlan, force: bool = False) -> tuple[bool, bool]:
             if change is not None:
                 _new_end_time(plan, change)
             return not finished, bool(finished)
-    (run_dir / layout.MARKERS).mkdir(parents=True)
-    (run_dir / layout.MARKERS / "settings").write_text(f"{plan.digest} {plan.np}\n")
+    write_stamp(run_dir, plan.digest, plan.np)
     return False, False
 
 

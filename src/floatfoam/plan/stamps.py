@@ -94,9 +94,22 @@ def _plain(value):
 
 def stamp_of(run_dir: Path) -> str | None:
     """The settings digest a run directory was stamped with (None without a stamp)."""
-    stamp = run_dir / layout.MARKERS / "settings"
+    return stamp_words(run_dir)[0]
+
+
+def stamp_words(run_dir: Path) -> tuple[str | None, str | None]:
+    """A run directory's stamp: the settings digest and the MPI ranks it was made with (None
+    for each it does not hold)."""
+    stamp = Path(run_dir) / layout.MARKERS / "settings"
     words = stamp.read_text().split() if stamp.exists() else []
-    return words[0] if words else None
+    return (words + [None, None])[0], (words + [None, None])[1]
+
+
+def write_stamp(run_dir: Path, digest: str, ranks: int) -> None:
+    """Stamp a new run directory with its settings digest and its MPI ranks (the driver does
+    it before anything else)."""
+    (Path(run_dir) / layout.MARKERS).mkdir(parents=True)
+    (Path(run_dir) / layout.MARKERS / "settings").write_text(f"{digest} {ranks}\n")
 
 
 def stamped_with(case: Case, level: str, run_dir: Path, divisor: int = 1,
