@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A one-node Slurm on this machine, for the cluster tests (tests/test_slurm.py) and for trying
+# A one-node Slurm on this machine, for the cluster tests (tests/cluster/test_slurm.py) and for trying
 # `floatfoam batch --submit` / `floatfoam validate --slurm` without a cluster:
 #   scripts/slurm_local.sh start DIR   munged, slurmctld and slurmd with their configuration,
 #                                      state, spool, logs and sockets under DIR, on two free

@@ -1,5 +1,5 @@
-"""make test's time step for the CFD tests that allow it (tests/test_cfd_bodies.py,
-tests/test_cfd.py): the step and the measured changes it makes, in one place."""
+"""make test's time step for the CFD tests that allow it (tests/cfd/test_cfd_bodies.py,
+tests/cfd/test_cfd.py): the step and the measured changes it makes, in one place."""
 
 # Courant 1 in the bulk and 0.5 at the interface (as the own runs of the 3D cases, the
 # capsizing ellipse, box_bilge and elliptic_cylinder_roll; the other cases' own runs hold 0.5

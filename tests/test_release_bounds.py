@@ -29,14 +29,6 @@ from floatfoam.potential.timedomain import cummins_decay
 from floatfoam.tank import Pose
 
 
-@pytest.fixture
-def build(tmp_path, monkeypatch):
-    """A build folder of the test's own, which a refused command must not create."""
-    folder = tmp_path / "build"
-    monkeypatch.setenv("FLOATFOAM_BUILD", str(folder))
-    return folder
-
-
 def refused(capsys, argv) -> str:
     """The one stderr line of ``floatfoam argv``, which must exit 2."""
     code = main(argv)

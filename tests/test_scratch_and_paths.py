@@ -98,16 +98,14 @@ def test_a_linked_case_is_named_after_its_link(tmp_path):
 
 @pytest.mark.parametrize("argv", [["cylinder_heave", "cylinder_heave"],
                                   ["cylinder_heave", "--levels", "coarse", "coarse"]])
-def test_batch_refuses_tasks_sharing_a_run_folder(tmp_path, monkeypatch, capsys, argv):
-    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path / "build"))
+def test_batch_refuses_tasks_sharing_a_run_folder(tmp_path, build, capsys, argv):
     out = tmp_path / "sweep.sh"
     assert main(["batch", *argv, "--out", str(out)]) == 2
     assert "the same run folder" in one_error_line(capsys) and not out.exists()
 
 
-def test_batch_refuses_a_run_folder_of_other_settings(tmp_path, monkeypatch, capsys):
-    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path / "build"))
-    run_dir = tmp_path / "build" / "cylinder_heave" / "coarse"
+def test_batch_refuses_a_run_folder_of_other_settings(tmp_path, build, capsys):
+    run_dir = build / "cylinder_heave" / "coarse"
     (run_dir / MARKERS).mkdir(parents=True)
     (run_dir / MARKERS / "settings").write_text("0123456789abcdef 1\n")  # another digest
     out = tmp_path / "sweep.sh"
@@ -119,9 +117,7 @@ def test_batch_refuses_a_run_folder_of_other_settings(tmp_path, monkeypatch, cap
     (["gz", "sphere", "--plot", "/proc/x.png"], "cannot use /proc/x.png"),
     (["batch", "cylinder_heave", "--out", "/nonexistent/x.sh"], "no folder /nonexistent"),
 ])
-def test_paths_that_cannot_be_used_are_one_line_exit_2(tmp_path, monkeypatch, capsys, argv,
-                                                       words):
-    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path / "build"))
+def test_paths_that_cannot_be_used_are_one_line_exit_2(build, capsys, argv, words):
     assert main(argv) == 2
     assert words in one_error_line(capsys)
 

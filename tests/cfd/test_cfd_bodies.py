@@ -283,7 +283,7 @@ def test_triaxial_ellipsoid_pitch_3d(tmp_path):
     period (measured 0.1588 s against 0.1601 s, −0.8 %), where the memoir's linear model
     without added inertia crosses 15 % earlier (0.1355 s); the draft within 1 %. (With G
     misplaced on x = 0 instead of where the trim puts it, it crosses at 0.1877 s:
-    tests/test_cfd_setup.py checks G's place.)"""
+    tests/foam/test_cfd_setup.py checks G's place.)"""
     record = 0.18
     case, theory, motion, info = cfd("ellipsoid_pitch", tmp_path, [f"run.end_time={record}"])
     assert info.mesh == "3d-half"

@@ -5,6 +5,7 @@ import subprocess
 import sys
 
 import pytest
+from conftest import ROOT
 
 from floatfoam.cli import main
 
@@ -93,12 +94,11 @@ def test_version(capsys):
     """`floatfoam --version`: the installed package's version, pyproject.toml's."""
     import tomllib
     from importlib.metadata import version
-    from pathlib import Path
 
     with pytest.raises(SystemExit) as stop:
         main(["--version"])
     assert stop.value.code == 0
-    pyproject = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text())
+    pyproject = tomllib.loads((ROOT / "pyproject.toml").read_text())
     assert capsys.readouterr().out == f"floatfoam {pyproject['project']['version']}\n"
     assert version("floatfoam") == pyproject["project"]["version"]
 

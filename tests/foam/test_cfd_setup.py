@@ -1,6 +1,6 @@
 """The set-up of a CFD run, without the solver: the mesh each case gets, the six-DoF
 constraints a release excites, the angles of the motion series, defaults and refusals, and
-cases that extend one another. (The runs themselves: tests/test_cfd_bodies.py.)"""
+cases that extend one another. (The runs themselves: tests/cfd/test_cfd_bodies.py.)"""
 
 import math
 import shutil

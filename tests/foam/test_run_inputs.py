@@ -2,7 +2,7 @@
 errors, the run lock, incomplete time folders, decomposition, the Slurm batch script.
 
 The processes here are real (a second lock holder, the floatfoam console script) but no
-OpenFOAM application runs; tests/test_run_reliability.py runs the solver.
+OpenFOAM application runs; tests/foam/test_run_reliability.py runs the solver.
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from conftest import DATA, ROOT
 
 from floatfoam.case import load_case
 from floatfoam.cli import main
@@ -24,7 +25,6 @@ from floatfoam.foam.motionlog import RESUMED, rebuild_motion
 from floatfoam.foam.runner import check_path
 from floatfoam.motion import read_motion
 
-DATA = Path(__file__).parent / "data"
 HOLD_LOCK = """
 import sys, time
 from floatfoam.foam.runlock import RunLock
@@ -64,7 +64,7 @@ def test_settings_are_checked_when_the_case_loads(setting, words):
 
 
 def test_unknown_key_in_a_case_file_names_the_nearest(tmp_path):
-    text = (Path(__file__).parents[1] / "cases" / "cylinder_heave" / "case.toml").read_text()
+    text = (ROOT / "cases" / "cylinder_heave" / "case.toml").read_text()
     (tmp_path / "case.toml").write_text(text.replace("cells_side =", "cells_sid ="))
     with pytest.raises(InputError, match=r"mesh.cells_sid is unknown \(did you mean "
                                          r"mesh.cells_side\?\)"):

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import DATA
 from foamlib import FoamFile
 
 from floatfoam import layout
@@ -21,7 +22,7 @@ from floatfoam.foam.paraview import RECONSTRUCT
 from floatfoam.plan import stamps
 from floatfoam.plan.runplan import resolve
 
-EXCERPT = Path(__file__).parent / "data" / "log.interFoam.excerpt"
+EXCERPT = DATA / "log.interFoam.excerpt"
 
 
 def test_log_excerpt_parses_steps_and_body_state():

@@ -1,7 +1,6 @@
 """The decay analysis on a committed real OpenFOAM motion series (tests/data/README.md)."""
 
-from pathlib import Path
-
+import conftest
 import pytest
 
 from floatfoam.analysis.decay import analyse_decay
@@ -10,7 +9,7 @@ from floatfoam.cli import main
 from floatfoam.motion import dof_series, read_motion
 from floatfoam.potential.radiation import potential_summary
 
-DATA = Path(__file__).parent / "data" / "cylinder_heave_coarse_motion.csv"
+DATA = conftest.DATA / "cylinder_heave_coarse_motion.csv"
 
 
 def test_real_heave_record():

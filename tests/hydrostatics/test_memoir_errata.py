@@ -8,8 +8,9 @@ with the exact theory fails a test:
   than a stated margin, well above any round-off.
 
 The wrong verdicts the printed ellipsoid criterion gives are flagged by ``floatfoam theory``.
-Tolerances as in tests/test_memoir_printed.py: CLOSED = 1e-12 relative for closed forms;
-ROOT = 1e-9 against theory_summary (its draft is a Brent root); QUAD = 1e-10 for quadratures.
+Tolerances as in tests/hydrostatics/test_memoir_printed.py: CLOSED = 1e-12 relative for closed
+forms; ROOT = 1e-9 against theory_summary (its draft is a Brent root); QUAD = 1e-10 for
+quadratures.
 """
 
 import json

@@ -183,7 +183,7 @@ def test_interrupt_signals_stop_the_solver(tmp_path, sig, code, case):
     folder. The SIGHUP goes to a gmsh-meshed case: gmsh's first initialize sets SIGHUP's and
     SIGTERM's default actions, which would end such a driver at once, its folder left in
     TMPDIR, had the driver not put its handlers back (floatfoam.interrupts.handlers_kept;
-    tests/test_meshing.py checks all three handlers)."""
+    tests/meshing/test_meshing.py checks all three handlers)."""
     run_dir = tmp_path / case / "coarse"
     driver = start(tmp_path, case=case)
     wait_until(lambda: (run_dir / "motion.csv").is_file() and processes_in(run_dir), driver)

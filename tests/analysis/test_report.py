@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import ROOT
 
 from floatfoam.analysis.cummins import MODEL
 from floatfoam.analysis.decay import analyse_decay
@@ -282,7 +283,7 @@ def test_report_sets_a_roll_record_beside_ikeda_and_potential_flow(tmp_path):
     cases, build = tmp_path / "cases", tmp_path / "build"
     (cases / "box").mkdir(parents=True)
     (cases / "box" / "case.toml").write_text(
-        (Path(__file__).parents[1] / "cases" / "box_bilge" / "case.toml").read_text())
+        (ROOT / "cases" / "box_bilge" / "case.toml").read_text())
     case = load_case(str(cases / "box"))
     t = np.arange(0.0, 7.0, 2e-3)
     roll = synthetic_decay(t, offset=10.0, period=1.44, zeta=0.012)  # degrees

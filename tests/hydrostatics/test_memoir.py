@@ -171,8 +171,8 @@ def test_oblate_is_stiffer_than_the_sphere_and_prolate_softer():
 def test_oblate_criterion_by_hand():
     # Replaces test_an_a_c_exchange_flips_the_criterion, which pinned the hypothesis that the
     # printed criterion exchanges a and c. The print, now read (docs/memoir.md, errata), is not
-    # an exchange: tests/test_memoir_errata.py pins what it is. This keeps the hand value of
-    # the exact limit: at half immersion (T = c), 3 (a^2 - c^2) / (8 c).
+    # an exchange: tests/hydrostatics/test_memoir_errata.py pins what it is. This keeps the hand
+    # value of the exact limit: at half immersion (T = c), 3 (a^2 - c^2) / (8 c).
     a, c = 2.0, 1.0
     assert memoir.ellipsoid_stability_limit(a, c, c) == pytest.approx(3 * (a * a - c * c) / (8 * c),
                                                                       rel=CLOSED)

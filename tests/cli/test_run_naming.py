@@ -3,20 +3,14 @@ folder as given, or a CASE whose run at --level (default coarse) is meant
 (floatfoam.cli.common.resolve_run). Runs written by hand (test_pictures.fake_run)."""
 
 import json
-from pathlib import Path
 
 import pytest
+from conftest import ROOT
 from fakes import fake_run
 
 from floatfoam.cli import main
 from floatfoam.cli.common import resolve_run
 from floatfoam.errors import InputError
-
-
-@pytest.fixture
-def build(tmp_path, monkeypatch):
-    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path / "build"))
-    return tmp_path / "build"
 
 
 def test_a_case_names_its_run_at_the_level(build):
@@ -69,10 +63,9 @@ def test_a_users_case_run_is_drawn_beside_its_model(tmp_path, build):
 
     own = tmp_path / "bodies" / "barge"
     own.mkdir(parents=True)
-    shutil.copy(Path(__file__).parents[1] / "cases" / "elliptic_cylinder_roll" / "case.toml",
-                own / "case.toml")
+    shutil.copy(ROOT / "cases" / "elliptic_cylinder_roll" / "case.toml", own / "case.toml")
     (own / "case.toml").write_text((own / "case.toml").read_text().replace(
-        'extends = "elliptic_cylinder"', f'extends = "{Path(__file__).parents[1]}/cases/'
+        'extends = "elliptic_cylinder"', f'extends = "{ROOT}/cases/'
         'elliptic_cylinder"'))
     run = fake_run(build, times=(0.0, 0.5, 1.0))
     info = run / ".floatfoam" / "info.json"

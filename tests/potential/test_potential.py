@@ -217,7 +217,7 @@ def test_section_roll_about_g_is_sway_times_lever():
 
 
 def test_many_panels_and_short_waves_stay_finite():
-    """Two failures the property test found (tests/test_potential_property.py): on panels
+    """Two failures the property test found (tests/potential/test_potential_property.py): on panels
     shorter than ~1 % of their distance from the origin the self term's round-off can make it
     ±π (768 panels on a half circle of radius 1: A∞ came out −2e5 kg/m), and at ω²a/g ≳ 40 the
     wave part can be 0 × inf = nan. The half circle's heave A∞ is ρπa²/2 exactly (the image makes
