@@ -309,7 +309,7 @@ def test_a_setting_added_later_leaves_the_runs_before_it():
 
 @pytest.mark.parametrize("name, overrides", [
     ("elliptic_cylinder_capsize", ("run.inner_distance=0.1", "run.outer_distance=0.7")),  # set
-    ("ellipsoid_roll", ()),  # defaulted from the body and the tank (3D)
+    ("ellipsoid", ()),  # defaulted from the body and the tank (3D, a zone wide enough)
 ])
 def test_scaled_morphing_is_another_run(name, overrides):
     """--morphing 1.5: both distances × 1.5 when the case sets them, ÷ 1.5 when they are the
@@ -553,7 +553,7 @@ def test_a_changed_mesh_motion_rule_makes_a_finished_run_foreign(monkeypatch):
 
     case = load_case("box_bilge")  # 2D roll: the Laplacian
     now = settings_digest(case, "coarse")
-    monkeypatch.setattr(zone, "mesh_motion", lambda case, kind: "distances")
+    monkeypatch.setattr(zone, "mesh_motion", lambda case, kind, band: "distances")
     assert settings_digest(case, "coarse") != now
 
 

@@ -149,16 +149,19 @@ def six_dof(name, run_dir, overrides=()):
     ("box_bilge_heave", (), "laplacian"),
     ("box_bilge", (), "laplacian"),  # heeled 10°: sway, heave and roll on a 2D section
     ("elliptic_cylinder_capsize", (), "distances"),  # released to turn over
-    ("ellipsoid_roll", (), "distances"),
-    ("superellipsoid_buoy", ("release.heel=0.0", "release.trim=0.0"), "distances"),  # 3D
+    ("ellipsoid", (), "distances"),  # 3D: a zone 2.65 × the body's smallest dimension
+    ("ellipsoid_roll", (), "laplacian"),  # 3D: a zone 1.29 × it, too thin for the distances
+    ("superellipsoid_buoy", (), "laplacian"),  # 3D, the whole tank: 0.45 ×
     ("lab_sphere", ('run.mesh_pose="equilibrium"',), "distances"),  # moved by the six-DoF scale
     ("elliptic_cylinder_capsize", ('run.mesh_motion="laplacian"',), "laplacian"),  # asked
     ("cylinder_heave", ('run.motion_diffusivity="linear"',), "laplacian"),  # 1/d
     ("elliptic_cylinder_capsize", ('run.motion_diffusivity="linear"',), "distances"),  # ignored
 ])
 def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, motion):
-    """run.mesh_motion "auto": the Laplacian for a release in heave alone on a mesh made at the
-    release, the six-DoF solver's distances otherwise. The Laplacian's dictionaries: the
+    """run.mesh_motion "auto": the six-DoF solver's distances for a release that turns the body
+    over and a mesh made at equilibrium, else the Laplacian in 2D, a wedge, and a 3D tank that
+    leaves the distances a zone thinner than twice the body's smallest dimension; the distances
+    in a 3D tank with a wider zone. The Laplacian's dictionaries: the
     displacement's diffusivity quadratic in the inverse distance from the body (linear with
     run.motion_diffusivity "linear"), the body's condition holding the six-DoF equations; no
     sixDoFRigidBodyState function object on either route."""

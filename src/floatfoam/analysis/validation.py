@@ -327,20 +327,20 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
 
 
 def mesh_motion_record(case, found, morphing: float | None) -> dict:
-    """How the study's runs moved their mesh (:func:`floatfoam.plan.zone.mesh_motion` of
-    the case on its runs' mesh), and what its mesh-motion run varied: ``motion``
+    """How the study's runs moved their mesh (:func:`floatfoam.plan.zone.motion_in` the
+    domain of its runs), and what its mesh-motion run varied: ``motion``
     ("laplacian", "distances"; None without a run's record), ``diffusivity`` (the
     Laplacian's, in words), ``factor``, ``run`` (its folder), ``variant`` (in words,
     :func:`floatfoam.plan.morphing.morphing_variant`), ``studied`` (its run finished: U_motion
     joins U_num) and ``note``. ``found``: :func:`study_runs`."""
     from floatfoam.plan.morphing import morphing_variant
-    from floatfoam.plan.zone import mesh_motion
+    from floatfoam.plan.zone import motion_in
     from floatfoam.settings import MOTION_DIFFUSIVITIES
 
     kinds = [(record_or_none(run) or RunRecord()).mesh for _, _, factor, run in found
              if factor == 1]
     kind = next((k for k in kinds if k), None)
-    motion = None if kind is None else mesh_motion(case, kind)
+    motion = None if kind is None else motion_in(case, kind)
     record = {"motion": motion}
     if motion == "laplacian":
         record["diffusivity"] = MOTION_DIFFUSIVITIES[case.settings.run.motion_diffusivity]

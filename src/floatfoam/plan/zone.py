@@ -32,6 +32,19 @@ def of_case(case: Case, release: Pose) -> MeshMotion:
     return resolve(case, release, kind_of(case, release))
 
 
+def motion_in(case: Case, kind: str) -> str | None:
+    """How the mesh of a run of ``case`` in a domain of ``kind`` follows the body, "laplacian"
+    or "distances" (:func:`resolve` at the case's release); None when the release or the
+    tank is refused."""
+    from floatfoam.hydrostatics.theory import equilibrium
+    from floatfoam.plan.release import release_state
+
+    try:
+        return resolve(case, release_state(case, equilibrium(case))["pose"], kind).motion
+    except InputError:
+        return None
+
+
 def resolve(case: Case, release: Pose, kind: str) -> MeshMotion:
     """The mesh motion of ``case`` in a domain of ``kind`` ("ogrid", "2d", "wedge", "3d",
     "3d-half": :mod:`floatfoam.plan.kind`) with the body at ``release``: the O-grid's zone
@@ -52,11 +65,14 @@ def resolve(case: Case, release: Pose, kind: str) -> MeshMotion:
             [box.half_width] if kind.startswith("3d") else [])
         length = float(body_extents(case.body).min())
     inner, outer = distances(case, length, clearance(case, release, walls, kind))
-    return MeshMotion(mesh_motion(case, kind), inner, outer)
+    band = (outer - inner) / float(body_extents(case.body).min())
+    return MeshMotion(mesh_motion(case, kind, band), inner, outer)
 
 
-def mesh_motion(case: Case, kind: str) -> str:
-    """How the mesh follows the body (``run.mesh_motion``; "auto" resolved here).
+def mesh_motion(case: Case, kind: str, band: float) -> str:
+    """How the mesh follows the body (``run.mesh_motion``; "auto" resolved here), ``band``
+    the width of the six-DoF distances' zone (outer − inner) over the body's smallest
+    dimension across.
 
     "laplacian": ``displacementLaplacian`` with the diffusivity ``quadratic inverseDistance
     (body)`` and the body's point displacement from the six-DoF equations
@@ -64,17 +80,28 @@ def mesh_motion(case: Case, kind: str) -> str:
     nearly with it, and no distance is set.
     "distances": the six-DoF motion solver, rigid within ``run.inner_distance`` and fixed
     beyond ``run.outer_distance``: the route of rotations and of a mesh made at rest.
-    "auto" is laplacian on a 2D section's, an O-grid's or a wedge's mesh made at the release,
-    unless the release turns the body over (a heel or trim in a DoF of non-positive stiffness,
-    :func:`turns_over`), and distances otherwise: a displacement field cannot follow a turn
-    of tens of degrees, and in 3D it gives the distances' damping (a period 0.5 % shorter)
-    at 1.4 × the wall. The measurements behind this rule: docs/morphing.md."""
+    "auto" is the distances for a release that turns the body over (a heel or trim in a DoF
+    of non-positive stiffness, :func:`turns_over`: a displacement field cannot follow a turn
+    of tens of degrees) and for a mesh made at equilibrium (moved to the release by the
+    six-DoF solver's scale); else the Laplacian on a 2D section's, an O-grid's or a wedge's
+    mesh, and in 3D where the distances' zone is thinner than :data:`THIN_BAND` × the body's
+    smallest dimension (there the distances squeeze its cells until the step collapses; the
+    Laplacian gives the same period and damping at ~1.4 × the wall), the distances in a 3D
+    tank that leaves them a wider zone. The measurements behind this rule: docs/morphing.md."""
     choice = case.settings.run.mesh_motion
     if choice != "auto":
         return choice
+    if case.settings.run.mesh_pose != "release" or turns_over(case):
+        return "distances"
     planar = kind in ("2d", "wedge", "ogrid")
-    return "laplacian" if planar and case.settings.run.mesh_pose == "release" \
-        and not turns_over(case) else "distances"
+    return "laplacian" if planar or band < THIN_BAND else "distances"
+
+
+#: the narrowest zone, × the body's smallest dimension across, in which "auto" keeps the
+#: six-DoF distances in 3D: the whole tanks of stl_pontoon (0.79) and superellipsoid_buoy
+#: (0.45) collapsed their steps on them at 0.31 s and 0.29 s, the half ellipsoid at 1.3 blew
+#: its air up at 2.9 s, and the ellipsoid's whole record ran at 2.65 (docs/morphing.md)
+THIN_BAND = 2.0
 
 
 #: the inner distance's default, × the body's smallest dimension across
