@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# A one-node Slurm on this machine, for the cluster tests (tests/cluster/test_slurm.py) and for trying
-# `floatfoam batch --submit` / `floatfoam validate --slurm` without a cluster:
+# A one-node Slurm on this machine, for the cluster tests (tests/cluster/test_slurm.py)
+# and for trying `floatfoam batch --submit` / `floatfoam validate --slurm` without a cluster:
 #   scripts/slurm_local.sh start DIR   munged, slurmctld and slurmd with their configuration,
 #                                      state, spool, logs and sockets under DIR, on two free
 #                                      ports; prints `export SLURM_CONF=DIR/slurm.conf`

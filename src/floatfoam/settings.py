@@ -93,9 +93,11 @@ class RunSettings:
                              "laplacian (displacementLaplacian, its diffusivity "
                              "run.motion_diffusivity: no distance to set), "
                              "distances (the six-DoF solver: rigid within inner_distance, "
-                             "fixed beyond outer_distance), or auto: laplacian on a 2D or "
-                             "wedge mesh made at the release unless the body is released to "
-                             "turn over, else distances")
+                             "fixed beyond outer_distance), or auto: distances for a body "
+                             "released to turn over or a mesh made at equilibrium, else "
+                             "laplacian on a 2D, O-grid or wedge mesh and in 3D where the "
+                             "distances' zone is thinner than twice the body's smallest "
+                             "dimension, distances in 3D otherwise (docs/morphing.md)")
     motion_diffusivity: str = spec("quadratic", kind=str, added=True,
                                     doc="the Laplacian's diffusivity in the distance d from "
                                     "the body: quadratic (1/d²) or linear (1/d, which spreads "

@@ -15,14 +15,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from floatfoam.bodies.geometry import icosphere, overlapping_boxes, self_intersection
-from floatfoam.bodies.surfaces import (
+from floatfoam.bodies.expression import (
     MAX_EXPRESSION_DEPTH,
     MAX_EXPRESSION_LENGTH,
     compile_expression,
-    implicit_body,
-    stl_body,
 )
+from floatfoam.bodies.geometry import icosphere, overlapping_boxes, self_intersection
+from floatfoam.bodies.surfaces import implicit_body, stl_body
 from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.errors import InputError
@@ -63,7 +62,8 @@ POWER_TOWER = "x**2+y**2+z**2-0.01+0*9**9**9"  # a Python int 9**387420489: neve
 
 def test_a_power_tower_is_inf_at_once_not_a_hang():
     """Run apart, with a time limit: with Python's integer arithmetic it would never return."""
-    code = ("from floatfoam.bodies.surfaces import compile_expression, implicit_body\n"
+    code = ("from floatfoam.bodies.expression import compile_expression\n"
+            "from floatfoam.bodies.surfaces import implicit_body\n"
             "from floatfoam.errors import InputError\n"
             "print(compile_expression('9**9**9')(0.0, 0.0, 0.0))\n"
             f"try: implicit_body({POWER_TOWER!r}, {BOUNDS!r}, 24)\n"

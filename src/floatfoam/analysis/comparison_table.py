@@ -7,11 +7,6 @@ from __future__ import annotations
 
 import csv
 from pathlib import Path
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from floatfoam.analysis.compare import Comparison
-
 
 CSV_FIELDS = ("case", "dof", "source", "period", "period_lo", "period_hi", "damping_ratio",
               "damping_lo", "damping_hi", "period_rel_diff", "damping_rel_diff",
@@ -74,8 +69,9 @@ def comparison_table(rows: list[dict]) -> tuple[list[str], list[list[str]]]:
     return [TABLE_HEADER[i] for i in keep], [[row[i] for i in keep] for row in cells]
 
 
-def comparison_markdown(comparison: Comparison) -> str:
-    """The comparison as a Markdown table, with the notes below it."""
+def comparison_markdown(comparison) -> str:
+    """The comparison (:class:`floatfoam.analysis.compare.Comparison`: its ``rows`` and
+    ``notes``) as a Markdown table, with the notes below it."""
     header, cells = comparison_table(comparison.rows)
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(cell.replace("|", "\\|") for cell in row) + " |"
@@ -84,7 +80,7 @@ def comparison_markdown(comparison: Comparison) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_comparison(comparison: Comparison, out_dir: str | Path) -> tuple[Path, Path]:
+def write_comparison(comparison, out_dir: str | Path) -> tuple[Path, Path]:
     """Write ``comparison.md`` and ``comparison.csv`` into ``out_dir``; return their paths."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)

@@ -6,17 +6,14 @@ radiation coefficients (:func:`case_figures`)."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from floatfoam.analysis.compare import Comparison
 from floatfoam.analysis.document import Document
 from floatfoam.analysis.overlay import decay_overlay
 from floatfoam.analysis.plots import plot_decay
+from floatfoam.analysis.sources import Sources
 from floatfoam.errors import InputError
 from floatfoam.motion import file_unit
-
-if TYPE_CHECKING:
-    from floatfoam.analysis.report import Sources
 
 
 def record_figures(case, theory, comparison: Comparison, out_dir: Path,

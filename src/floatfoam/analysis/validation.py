@@ -171,8 +171,6 @@ def finished_morphing(case_name: str, build: Path) -> float | None:
     return float(factor) if layout.is_finished(run) else None
 
 
-
-
 def _run_values(name: str, divisor: int, run: Path, dof: str,
                 morphing: float = 1.0, settled: float | None = None) -> RunValues:
     info = record_or_none(run) or RunRecord()  # what the driver recorded, when it did

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from floatfoam.bodies.expression import compile_expression
+
 #: a mirrored vertex may lie this far from the surface, × the body's smallest extent, for the
 #: body to count as symmetric: 1.2 % of a coarse 3D body cell (12 across that extent), and
 #: above the round-off of an STL's single-precision coordinates (~1e-7 relative)
@@ -43,8 +45,6 @@ def _implicit_distance(expression: str, points: np.ndarray, mirrored: np.ndarray
     """|F(mirrored) − F(points)| / |∇F| at ``points``: to first order, how far apart the level
     sets of F through a point and through its mirror image lie (0 for an F symmetric about the
     plane, wherever the points are: marching cubes' lie on F's trilinear interpolation)."""
-    from floatfoam.bodies.surfaces import compile_expression
-
     func = compile_expression(expression)
     h = 1e-3 * step
     grad = np.column_stack([(func(*(points + h * e).T) - func(*(points - h * e).T)) / (2 * h)

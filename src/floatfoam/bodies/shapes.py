@@ -39,7 +39,7 @@ class Body:
         return float(self.lo[2])
 
     #: the planes x = 0 and y = 0 ("x", "y") the body is mirror symmetric about, for a half
-    #: domain in 3D (:func:`floatfoam.meshing.domains.half_plane`); none unless a shape says
+    #: domain in 3D (:func:`floatfoam.plan.kind.half_plane`); none unless a shape says
     mirror_planes: tuple[str, ...] = ()
     #: the body is its own triangles (an STL or an implicit surface): meshers take them as they
     #: are, with prism layers by default (settings.TRIANGLE_LAYERS)

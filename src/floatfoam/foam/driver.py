@@ -55,7 +55,8 @@ def existing_run(case: Case, level: str, np_: int, build_dir: Path | None = None
                  divisor: int = 1, morphing: float = 1.0) -> tuple[Path, bool | None]:
     """The run directory of ``case`` at ``level`` and what it holds (:func:`existing`), the
     run's plan resolved here (:func:`floatfoam.plan.runplan.resolve`). Writes nothing."""
-    plan = resolve(case, level, np_, build_dir=build_dir, divisor=divisor, morphing=morphing)
+    plan = resolve(case, level, np_, build_dir=build_dir, divisor=divisor, morphing=morphing,
+                   solver=False)
     finished, _ = existing(plan)
     return plan.run_dir, finished
 

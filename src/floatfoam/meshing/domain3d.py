@@ -43,7 +43,7 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam import gmshio
-from floatfoam.bodies.surfaces import compile_expression
+from floatfoam.bodies.expression import compile_expression
 from floatfoam.errors import InputError
 from floatfoam.meshing import sections
 from floatfoam.meshing.body_surface import place

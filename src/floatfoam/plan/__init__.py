@@ -7,5 +7,6 @@ analysis needs to know of a run without running it (below :mod:`floatfoam.meshin
   domain, :mod:`~floatfoam.plan.release` the release, the mesh's pose and the end time;
 * :mod:`~floatfoam.plan.zone` how the mesh follows the body, :mod:`~floatfoam.plan.morphing`
   that motion spread for a study;
-* :mod:`~floatfoam.plan.stamps` what a run is of (its solver, settings digest and stamp).
+* :mod:`~floatfoam.plan.stamps` what a run is of (its solver, settings digest and stamp),
+  :mod:`~floatfoam.plan.record` what it recorded when rendered (its info.json).
 """

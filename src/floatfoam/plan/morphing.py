@@ -54,7 +54,10 @@ def scaled_morphing(case: Case, release: Pose, factor: float) -> Case:
     mesh = zone.of_case(case, release)
     if mesh.motion == "distances":
         scale = distance_factor(case, factor)
-        return with_overrides(case, [f"run.inner_distance={mesh.inner * scale!r}",
+        # named: under "auto" a narrowed zone could fall below the thin zone that takes the
+        # Laplacian in 3D (floatfoam.plan.zone.THIN_BAND), and the study would vary the solver
+        return with_overrides(case, ['run.mesh_motion="distances"',
+                                     f"run.inner_distance={mesh.inner * scale!r}",
                                      f"run.outer_distance={mesh.outer * scale!r}"])
     wider = _wider_diffusivity(case, factor)
     return with_overrides(case, [f'run.motion_diffusivity="{wider}"'])

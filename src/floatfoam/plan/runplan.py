@@ -1,7 +1,9 @@
 """A run resolved once from the command (:func:`resolve`): the case as the run takes it, its
 level, ranks, release and the pose its mesh is made at, its simulated time, its folder and the
-settings digest its stamp holds. Everything is checked here, before anything is written; the
-driver (:mod:`floatfoam.foam.driver`), the mesher and the render take the plan as it is."""
+settings digest its stamp holds, each checked here before anything is written (the mesh's
+plan and the ranks are checked by the driver, :func:`floatfoam.foam.driver.check_plan`, also
+before it writes); the driver (:mod:`floatfoam.foam.driver`) and the render take the plan as
+it is."""
 
 from __future__ import annotations
 
@@ -65,17 +67,19 @@ class RunPlan:
 
 def resolve(case: Case, level: str = "coarse", np_: int = 1, *,
             build_dir: Path | None = None, equilibrium: Equilibrium | None = None,
-            hostfile: Path | None = None, divisor: int = 1,
-            morphing: float = 1.0) -> RunPlan:
+            hostfile: Path | None = None, divisor: int = 1, morphing: float = 1.0,
+            solver: bool = True) -> RunPlan:
     """The plan of a run of ``case`` at ``level`` on ``np_`` ranks: ``divisor`` k > 1
     divides the level's time-step limits by k (a time-step study, in ``<level>-dt<k>``),
     ``morphing`` f ≠ 1 spreads the mesh motion by f (in ``<level>-morph<f>``); ``equilibrium``
-    is the case's (solved here when not given). Raises InputError on bad input; writes
-    nothing."""
+    is the case's (solved here when not given); ``solver`` False leaves out the check that the
+    solver exists (a plan only compared with a run folder's). Raises InputError on bad input;
+    writes nothing."""
     level_index(level)
     check_morphing(morphing)
     run = smaller_steps(case, divisor)
-    solver_path(run)  # refused before anything is done when missing
+    if solver:
+        solver_path(run)  # refused before anything is done when missing
     if equilibrium is None:
         from floatfoam.hydrostatics.theory import equilibrium as solve
 

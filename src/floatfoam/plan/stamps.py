@@ -1,7 +1,8 @@
 """What a run is of: the interFoam it runs (:func:`solver_path`), the digest of everything its
 result depends on (:func:`settings_digest`), and the stamp in its folder that records it
-(:func:`stamp_of`, :func:`stamped_with`). The driver writes the stamp before anything else; the
-analysis reads it to leave out runs of other settings than the case's today."""
+(:func:`write_stamp`, read by :func:`stamp_words`, :func:`stamp_of`, :func:`stamped_with`). The
+driver writes the stamp before anything else; the analysis reads it to leave out runs of other
+settings than the case's today."""
 
 from __future__ import annotations
 

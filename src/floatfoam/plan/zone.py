@@ -86,8 +86,9 @@ def mesh_motion(case: Case, kind: str, band: float) -> str:
     six-DoF solver's scale); else the Laplacian on a 2D section's, an O-grid's or a wedge's
     mesh, and in 3D where the distances' zone is thinner than :data:`THIN_BAND` × the body's
     smallest dimension (there the distances squeeze its cells until the step collapses; the
-    Laplacian gives the same period and damping at ~1.4 × the wall), the distances in a 3D
-    tank that leaves them a wider zone. The measurements behind this rule: docs/morphing.md."""
+    Laplacian runs, no slower), the distances in a 3D tank that leaves them a wider zone (the
+    Laplacian's period and damping at ~0.7 × its wall). The measurements behind this rule:
+    docs/morphing.md."""
     choice = case.settings.run.mesh_motion
     if choice != "auto":
         return choice
