@@ -86,8 +86,8 @@ def mesh_motion(case: Case, kind: str, band: float) -> str:
     six-DoF solver's scale); else the Laplacian on a 2D section's, an O-grid's or a wedge's
     mesh, and in 3D where the distances' zone is thinner than :data:`THIN_BAND` × the body's
     smallest dimension (there the distances squeeze its cells until the step collapses; the
-    Laplacian runs, no slower), the distances in a 3D tank that leaves them a wider zone (the
-    Laplacian's period and damping at ~0.7 × its wall). The measurements behind this rule:
+    Laplacian runs at about their cost), the distances in a 3D tank that leaves them a wider
+    zone (the Laplacian's period and damping at ~0.7 × its wall). The measurements behind this rule:
     docs/morphing.md."""
     choice = case.settings.run.mesh_motion
     if choice != "auto":
