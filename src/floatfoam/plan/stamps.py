@@ -101,16 +101,21 @@ def stamp_of(run_dir: Path) -> str | None:
 def stamp_words(run_dir: Path) -> tuple[str | None, str | None]:
     """A run directory's stamp: the settings digest and the MPI ranks it was made with (None
     for each it does not hold)."""
-    stamp = Path(run_dir) / layout.MARKERS / "settings"
-    words = stamp.read_text().split() if stamp.exists() else []
-    return (words + [None, None])[0], (words + [None, None])[1]
+    stamp = _stamp_path(run_dir)
+    digest, ranks = ((stamp.read_text().split() if stamp.exists() else []) + [None, None])[:2]
+    return digest, ranks
 
 
 def write_stamp(run_dir: Path, digest: str, ranks: int) -> None:
     """Stamp a new run directory with its settings digest and its MPI ranks (the driver does
     it before anything else)."""
-    (Path(run_dir) / layout.MARKERS).mkdir(parents=True)
-    (Path(run_dir) / layout.MARKERS / "settings").write_text(f"{digest} {ranks}\n")
+    stamp = _stamp_path(run_dir)
+    stamp.parent.mkdir(parents=True)
+    stamp.write_text(f"{digest} {ranks}\n")
+
+
+def _stamp_path(run_dir: Path) -> Path:
+    return Path(run_dir) / layout.MARKERS / "settings"
 
 
 def stamped_with(case: Case, level: str, run_dir: Path, divisor: int = 1,
@@ -120,7 +125,7 @@ def stamped_with(case: Case, level: str, run_dir: Path, divisor: int = 1,
     case as the command gives it: a study's run stamps its own digest); None when it has no
     stamp (the driver writes it before anything else: a folder without one was not made by a
     run)."""
-    if not (run_dir / layout.MARKERS / "settings").exists():
+    if not _stamp_path(run_dir).exists():
         return None
     digest = stamp_of(run_dir)
     return digest is not None and digest == settings_digest(case, level, divisor=divisor,

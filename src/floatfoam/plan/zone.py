@@ -52,6 +52,7 @@ def resolve(case: Case, release: Pose, kind: str) -> MeshMotion:
     mesh's from the body's smallest dimension across to the tank's (:func:`floatfoam.tank.tank`;
     its sides are held in 3D only). Raises InputError for a setting missing or a tank without
     room."""
+    smallest = float(body_extents(case.body).min())  # the body's smallest dimension across
     if kind == "ogrid":
         mesh, domain = case.settings.mesh, case.settings.domain
         depth = case.depth if math.isfinite(case.depth) else required(domain.depth,
@@ -63,10 +64,9 @@ def resolve(case: Case, release: Pose, kind: str) -> MeshMotion:
         box = tank(case)
         walls = [box.air_height, box.depth, box.half_length] + (
             [box.half_width] if kind.startswith("3d") else [])
-        length = float(body_extents(case.body).min())
+        length = smallest
     inner, outer = distances(case, length, clearance(case, release, walls, kind))
-    band = (outer - inner) / float(body_extents(case.body).min())
-    return MeshMotion(mesh_motion(case, kind, band), inner, outer)
+    return MeshMotion(mesh_motion(case, kind, (outer - inner) / smallest), inner, outer)
 
 
 def mesh_motion(case: Case, kind: str, band: float) -> str:
