@@ -156,15 +156,17 @@ def six_dof(name, run_dir, overrides=()):
     ("elliptic_cylinder_capsize", ('run.mesh_motion="laplacian"',), "laplacian"),  # asked
     ("cylinder_heave", ('run.motion_diffusivity="linear"',), "laplacian"),  # 1/d
     ("elliptic_cylinder_capsize", ('run.motion_diffusivity="linear"',), "distances"),  # ignored
+    ("cylinder_heave", ("run.inner_distance=0.045", "run.outer_distance=0.24"), "distances"),
+    ("ellipsoid_roll", ("run.outer_distance=0.5",), "distances"),  # a distance set is used
 ])
 def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, motion):
-    """run.mesh_motion "auto": the six-DoF solver's distances for a release that turns the body
-    over and a mesh made at equilibrium, else the Laplacian in 2D, a wedge, and a 3D tank that
-    leaves the distances a zone thinner than twice the body's smallest dimension; the distances
-    in a 3D tank with a wider zone. The Laplacian's dictionaries: the
-    displacement's diffusivity quadratic in the inverse distance from the body (linear with
-    run.motion_diffusivity "linear"), the body's condition holding the six-DoF equations; no
-    sixDoFRigidBodyState function object on either route."""
+    """run.mesh_motion "auto": the six-DoF solver's distances where the case sets a distance,
+    for a release that turns the body over and a mesh made at equilibrium, else the Laplacian
+    in 2D, a wedge, and a 3D tank that leaves the distances a zone thinner than twice the
+    body's smallest dimension; the distances in a 3D tank with a wider zone. The Laplacian's
+    dictionaries: the displacement's diffusivity quadratic in the inverse distance from the
+    body (linear with run.motion_diffusivity "linear"), the body's condition holding the six-DoF
+    equations; no sixDoFRigidBodyState function object on either route."""
     from foamlib import FoamFile
 
     from floatfoam.layout import COMMON_DIR

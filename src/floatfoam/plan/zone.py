@@ -80,19 +80,21 @@ def mesh_motion(case: Case, kind: str, band: float) -> str:
     nearly with it, and no distance is set.
     "distances": the six-DoF motion solver, rigid within ``run.inner_distance`` and fixed
     beyond ``run.outer_distance``: the route of rotations and of a mesh made at rest.
-    "auto" is the distances for a release that turns the body over (a heel or trim in a DoF
-    of non-positive stiffness, :func:`turns_over`: a displacement field cannot follow a turn
-    of tens of degrees) and for a mesh made at equilibrium (moved to the release by the
-    six-DoF solver's scale); else the Laplacian on a 2D section's, an O-grid's or a wedge's
-    mesh, and in 3D where the distances' zone is thinner than :data:`THIN_BAND` × the body's
-    smallest dimension (there the distances squeeze its cells until the step collapses; the
-    Laplacian runs at about their cost), the distances in a 3D tank that leaves them a wider
-    zone (the Laplacian's period and damping at ~0.7 × its wall). The measurements behind this rule:
-    docs/morphing.md."""
-    choice = case.settings.run.mesh_motion
-    if choice != "auto":
-        return choice
-    if case.settings.run.mesh_pose != "release" or turns_over(case):
+    "auto" is the distances where the case sets ``run.inner_distance`` or
+    ``run.outer_distance`` (a distance set is a distance used), for a release that turns the
+    body over (a heel or trim in a DoF of non-positive stiffness, :func:`turns_over`: a
+    displacement field cannot follow a turn of tens of degrees) and for a mesh made at
+    equilibrium (moved to the release by the six-DoF solver's scale); else the Laplacian on a
+    2D section's, an O-grid's or a wedge's mesh, and in 3D where the distances' zone is
+    thinner than :data:`THIN_BAND` × the body's smallest dimension (there the distances
+    squeeze its cells until the step collapses; the Laplacian runs at about their cost), the
+    distances in a 3D tank that leaves them a wider zone (the Laplacian's period and damping
+    at ~0.7 × its wall). The measurements behind this rule: docs/morphing.md."""
+    run = case.settings.run
+    if run.mesh_motion != "auto":
+        return run.mesh_motion
+    if run.inner_distance is not None or run.outer_distance is not None \
+            or run.mesh_pose != "release" or turns_over(case):
         return "distances"
     planar = kind in ("2d", "wedge", "ogrid")
     return "laplacian" if planar or band < THIN_BAND else "distances"
