@@ -7,6 +7,7 @@ regression runs are in tests/cfd/; tests of the whole package stay here. The hel
 (pyproject.toml: pythonpath = ["tests"]).
 """
 
+import fcntl
 import os
 from pathlib import Path
 
@@ -25,3 +26,28 @@ def build(tmp_path, monkeypatch):
     folder = tmp_path / "build"
     monkeypatch.setenv("FLOATFOAM_BUILD", str(folder))
     return folder
+
+
+def pytest_collection_modifyitems(config, items):
+    """Under pytest-xdist (make test: ``-n 2 --dist worksteal``), the tests that run the solver
+    come first, the Slurm ones at their head: the first worker's half of the collection holds
+    them all, one after another, and the other worker runs the rest beside them, then takes
+    tests from the tail of the first one's queue (so never a Slurm test: each worker that ran
+    one would start a Slurm of its own). Alone, pytest keeps the files' order."""
+    if hasattr(config, "workerinput"):  # an xdist worker; every worker sorts alike
+        items.sort(key=lambda item: (item.get_closest_marker("openfoam") is None,
+                                     item.path.parent.name != "cluster"))
+
+
+@pytest.fixture(autouse=True)
+def one_solver_at_a_time(request, tmp_path_factory):
+    """A test that runs the solver holds a lock shared by every worker of the session (and by
+    the sessions of this machine's user): its ranks take the cores, and two runs at once would
+    share them (and warn that they do, foam.ranks.check_free_cores)."""
+    if request.node.get_closest_marker("openfoam") is None:
+        yield
+        return
+    lock = tmp_path_factory.getbasetemp().parent / "floatfoam-solver.lock"
+    with open(lock, "a") as handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)  # released when the file closes
+        yield
