@@ -41,8 +41,8 @@ def pytest_collection_modifyitems(config, items):
 
 @pytest.fixture(autouse=True)
 def one_solver_at_a_time(request, tmp_path_factory):
-    """A test that runs the solver holds a lock shared by every worker of the session (and by
-    the sessions of this machine's user): its ranks take the cores, and two runs at once would
+    """A test that runs the solver holds a lock shared by the session's workers (beside the
+    session's own temporary folder): its ranks take the cores, and two runs at once would
     share them (and warn that they do, foam.ranks.check_free_cores)."""
     if request.node.get_closest_marker("openfoam") is None:
         yield
