@@ -43,12 +43,12 @@ def running(folder: Path, command: str) -> list[int]:
     return found
 
 
-def ended(folder: Path, command: str, seconds: float) -> bool:
-    """Whether no process in ``folder`` runs ``command`` within ``seconds``: a process that
-    was sent SIGTERM is gone once the kernel has scheduled its exit, which takes a moment when
-    other work holds the cores (make test runs its solver beside these tests)."""
+def within(condition, seconds: float) -> bool:
+    """Whether ``condition()`` holds within ``seconds``: a process sent SIGTERM is gone once
+    the kernel has scheduled its exit, which takes a moment when other work holds the cores
+    (make test runs its solver beside these tests)."""
     deadline = time.monotonic() + seconds
-    while running(folder, command):
+    while not condition():
         if time.monotonic() > deadline:
             return False
         time.sleep(0.02)
@@ -56,12 +56,7 @@ def ended(folder: Path, command: str, seconds: float) -> bool:
 
 
 def gone(folder: Path, seconds: float) -> bool:
-    deadline = time.monotonic() + seconds
-    while processes_in(folder):
-        if time.monotonic() > deadline:
-            return False
-        time.sleep(0.05)
-    return True
+    return within(lambda: not processes_in(folder), seconds)
 
 
 TWO_SESSIONS = """session sleep 300 &
@@ -104,7 +99,7 @@ echo never
 """)
     assert driver.stdout.readline().strip() == "after"
     # stopped by the session's own end, well before the watcher's one-second poll
-    assert ended(tmp_path, "sleep 302", 0.3)
+    assert within(lambda: not running(tmp_path, "sleep 302"), 0.3)
     assert driver.wait(timeout=10) == 7
     assert driver.stdout.read().strip() == ""
     assert gone(tmp_path, 1.0)

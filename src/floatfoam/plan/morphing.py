@@ -54,8 +54,8 @@ def scaled_morphing(case: Case, release: Pose, factor: float) -> Case:
     mesh = zone.of_case(case, release)
     if mesh.motion == "distances":
         scale = distance_factor(case, factor)
-        # named: under "auto" a narrowed zone could fall below the thin zone that takes the
-        # Laplacian in 3D (floatfoam.plan.zone.THIN_BAND), and the study would vary the solver
+        # named in the run's stamp; "auto" resolves to the distances too once they are set
+        # (floatfoam.plan.zone.mesh_motion), so a narrowed zone never varies the solver
         return with_overrides(case, ['run.mesh_motion="distances"',
                                      f"run.inner_distance={mesh.inner * scale!r}",
                                      f"run.outer_distance={mesh.outer * scale!r}"])
