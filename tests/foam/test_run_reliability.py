@@ -93,6 +93,13 @@ def written(run_dir: Path, t: float) -> bool:
     return True
 
 
+def latest_written(run_dir: Path) -> float:
+    """The last time every rank has written whole (:func:`written`), 0 before the first."""
+    roots = sorted(run_dir.glob("processor[0-9]*")) or [run_dir]
+    times = [value for value, _ in layout.time_folders(roots[0])] if roots[0].is_dir() else []
+    return max((t for t in times if written(run_dir, t)), default=0.0)
+
+
 def last_line(text: str) -> str:
     return text.strip().splitlines()[-1]
 
@@ -136,21 +143,30 @@ def test_race_sigterm_truncated_time_and_resume(tmp_path):
 
 @pytest.mark.parametrize("ranks", [1, 2])
 def test_resume_after_every_write(tmp_path, ranks):
-    """A driver stopped with SIGTERM as soon as each time folder is written, four times in a
-    row, then run to the end: nothing is set aside (the first folder a restarted solver writes
-    lacks the motionScale of the folder it restarted from, and is complete), the motion record
-    holds every step of the solver's log, and it ends where an uninterrupted run ends."""
+    """A driver stopped with SIGTERM as soon as a time folder after the last run's is written,
+    up to four times in a row, then run to the end: nothing is set aside (the first folder a
+    restarted solver writes lacks the motionScale of the folder it restarted from, and is
+    complete), the motion record holds every step of the solver's log, and it ends where an
+    uninterrupted run ends."""
     extra = ("--np", str(ranks))
     run_dir = tmp_path / CASE / "coarse"
-    for t in ("0.02", "0.04", "0.06", "0.08"):
+    stops = 0
+    while stops < 4:
+        # the next write after what the last run wrote: a solver that outran its SIGTERM
+        # (the test polls every 0.2 s, the solver writes every few steps) wrote more than one
+        t = round(latest_written(run_dir) + 0.02, 9)
+        if t > 0.1 - 1e-9:
+            break
         driver = start(tmp_path, *extra, end_time=0.1, interval=0.02)
-        wait_until(lambda t=t: written(run_dir, float(t)), driver)
+        wait_until(lambda t=t: written(run_dir, t), driver)
         driver.send_signal(signal.SIGTERM)
         _, err = driver.communicate(timeout=60)
         assert driver.returncode == 143, err
         reached = float(last_line(err).split("at t = ")[1].split()[0])
-        assert reached >= float(t) - 1e-9 and "set aside" not in err
+        assert reached >= t - 1e-9 and "set aside" not in err
         wait_gone(run_dir)
+        stops += 1
+    assert stops >= 2, "the solver outran its SIGTERM by more than two writes"
     rerun = subprocess.run(command(*extra, end_time=0.1, interval=0.02),
                            env=environment(tmp_path), capture_output=True, text=True,
                            timeout=300)
