@@ -40,14 +40,22 @@ def pytest_collection_modifyitems(config, items):
 
 
 @pytest.fixture(autouse=True)
-def one_solver_at_a_time(request, tmp_path_factory):
-    """A test that runs the solver holds a lock shared by the session's workers (beside the
-    session's own temporary folder): its ranks take the cores, and two runs at once would
-    share them (and warn that they do, foam.ranks.check_free_cores)."""
+def one_solver_at_a_time(request, tmp_path_factory, monkeypatch):
+    """The session's workers run one solver at a time: its ranks take the cores, and two runs
+    at once would share them (and warn that they do, foam.ranks.check_free_cores). A test that
+    runs the solver names a lock shared by the workers (beside the session's own temporary
+    folder) in FLOATFOAM_SOLVER_LOCK, which its runs hold while their solver runs (meshing,
+    potential flow and analysis go on beside the other worker's solver); the Slurm tests, whose
+    jobs take the submitter's environment, hold it from start to end instead."""
     if request.node.get_closest_marker("openfoam") is None:
         yield
         return
     lock = tmp_path_factory.getbasetemp().parent / "floatfoam-solver.lock"
+    if request.node.path.parent.name != "cluster":
+        monkeypatch.setenv("FLOATFOAM_SOLVER_LOCK", str(lock))
+        yield
+        return
+    monkeypatch.delenv("FLOATFOAM_SOLVER_LOCK", raising=False)
     with open(lock, "a") as handle:
         fcntl.flock(handle, fcntl.LOCK_EX)  # released when the file closes
         yield

@@ -15,6 +15,7 @@ import time
 from pathlib import Path
 
 import pytest
+from procutil import SMALL_OGRID
 
 from floatfoam.cli import main
 from floatfoam.cluster import jobs, slurm
@@ -143,7 +144,7 @@ def test_slurm_validation_study_as_an_array_and_a_dependent_study_job(tmp_path, 
     env = environment(tmp_path, cluster)
     # two ranks a task: mpirun inside each takes the task's allocation (--ntasks 2, the 2 cores)
     made = floatfoam("validate", CASE, "--np", "2", "--set", "run.end_time=0.03", "--set",
-                     "run.write_interval=0.03", "--slurm", env=env)
+                     "run.write_interval=0.03", *SMALL_OGRID, "--slurm", env=env)
     assert made.returncode == 0, made.stderr
     (record,) = jobs.read_records(None, tmp_path)
     runs = ["coarse", "medium", "fine", "medium-dt2", "coarse-morph1.5"]

@@ -327,3 +327,15 @@ def test_bad_run_input_exit_2_before_anything_is_written(capsys, monkeypatch, tm
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and key in err and "valid" in err
     assert not (tmp_path / "build").exists()
+
+
+@pytest.mark.parametrize("where", ["no/such/folder/turns.lock", "."])
+def test_a_solver_lock_that_cannot_be_used_exits_2_before_anything_is_written(
+        capsys, monkeypatch, tmp_path, where):
+    """FLOATFOAM_SOLVER_LOCK names a file in an existing folder, or the command stops."""
+    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path / "build"))
+    monkeypatch.setenv("FLOATFOAM_SOLVER_LOCK", str(tmp_path / where))
+    assert main(["run", "cylinder_heave", "--set", 'run.solver="/usr/bin/interFoam"']) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "FLOATFOAM_SOLVER_LOCK" in err and "valid" in err
+    assert not (tmp_path / "build").exists()

@@ -11,6 +11,7 @@ OpenFOAM error, and the Slurm batch script's tasks run with bash.
 from __future__ import annotations
 
 import dataclasses
+import fcntl
 import os
 import shutil
 import signal
@@ -22,7 +23,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from foamlib import FoamFile
-from procutil import locked, processes_in
+from procutil import SMALL_OGRID, locked, processes_in
 
 from floatfoam import layout
 from floatfoam.case import load_case
@@ -41,11 +42,14 @@ CASE = "cylinder_heave"
 
 
 def command(*extra: str, end_time: float = 0.6, case: str = CASE,
-            interval: float | None = None) -> list[str]:
+            interval: float | None = None, small: bool = False) -> list[str]:
+    """``floatfoam run`` of ``case`` to ``end_time``; ``small``: on the small O-grid
+    (procutil.SMALL_OGRID)."""
     interval = min(end_time, 0.1) if interval is None else interval
     ranks = [] if "--np" in extra else ["--np", "1"]  # serial unless asked: the folders' paths
+    mesh = SMALL_OGRID if small else []
     return [FLOATFOAM, "run", case, "--set", f"run.end_time={end_time}", "--set",
-            f"run.write_interval={interval}", *ranks, *extra]
+            f"run.write_interval={interval}", *ranks, *mesh, *extra]
 
 
 def environment(build: Path) -> dict:
@@ -55,9 +59,10 @@ def environment(build: Path) -> dict:
 
 
 def start(build: Path, *extra: str, end_time: float = 0.6, case: str = CASE,
-          interval: float | None = None) -> subprocess.Popen:
+          interval: float | None = None, small: bool = False) -> subprocess.Popen:
     """A driver in the background, in a session of its own (signals reach it alone)."""
-    return subprocess.Popen(command(*extra, end_time=end_time, case=case, interval=interval),
+    return subprocess.Popen(command(*extra, end_time=end_time, case=case, interval=interval,
+                                    small=small),
                             env=environment(build),
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
@@ -234,10 +239,28 @@ def test_sigkilled_driver_takes_its_solver(tmp_path, ranks):
     assert not any(p.exists() for p in left)  # ... the next command removes it
 
 
+def test_runs_naming_one_solver_lock_take_turns(tmp_path, monkeypatch):
+    """FLOATFOAM_SOLVER_LOCK held by another: the run prepares its folder, says in one line that
+    it waits, starts no solver until the lock is free, then runs to its end."""
+    lock = tmp_path / "turns.lock"  # the test's own: held here, not make test's shared one
+    monkeypatch.setenv("FLOATFOAM_SOLVER_LOCK", str(lock))
+    run_dir = tmp_path / CASE / "coarse"
+    with open(lock, "a") as held:
+        fcntl.flock(held, fcntl.LOCK_EX)
+        driver = start(tmp_path, end_time=0.02, interval=0.02, small=True)
+        wait_until(lambda: (run_dir / "log.setAlphaField").is_file(), driver)
+        time.sleep(3.0)  # the driver reached its turn within a second (its last step before)
+        assert driver.poll() is None and not (run_dir / "log.interFoam").exists()
+    _, err = driver.communicate(timeout=120)
+    assert driver.returncode == 0, err
+    assert f"waiting for the cores: another run's solver holds {lock}" in err
+    assert is_finished(run_dir)
+
+
 def test_run_ends_exactly_at_end_time(tmp_path):
     """end_time 0.25 s with write_interval 0.1 s: the interval becomes 0.25/3 s and the last
     write is at 0.25 s."""
-    proc = subprocess.run(command(end_time=0.25), env=environment(tmp_path),
+    proc = subprocess.run(command(end_time=0.25, small=True), env=environment(tmp_path),
                           capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr
     run_dir = tmp_path / CASE / "coarse"
@@ -252,12 +275,14 @@ def test_a_finished_run_continues_to_a_later_end_time(tmp_path):
     and 0.2 s is written. Then run.end_time 0.15 s: the run, finished past it, is kept as it
     is."""
     run_dir = tmp_path / CASE / "coarse"
-    first = subprocess.run(command(end_time=0.1, interval=0.05), env=environment(tmp_path),
+    first = subprocess.run(command(end_time=0.1, interval=0.05, small=True),
+                           env=environment(tmp_path),
                            capture_output=True, text=True, timeout=600)
     assert first.returncode == 0, first.stderr
     before = read_motion(run_dir / "motion.csv")
 
-    longer = subprocess.run(command(end_time=0.2, interval=0.05), env=environment(tmp_path),
+    longer = subprocess.run(command(end_time=0.2, interval=0.05, small=True),
+                            env=environment(tmp_path),
                             capture_output=True, text=True, timeout=600)
     assert longer.returncode == 0, longer.stderr
     assert "it continues to 0.2 s" in longer.stderr and "other settings" not in longer.stderr
@@ -274,7 +299,8 @@ def test_a_finished_run_continues_to_a_later_end_time(tmp_path):
         np.testing.assert_array_equal(record[key][kept], before[key])
     assert (run_dir / "0.2" / "uniform" / "time").is_file() and is_finished(run_dir)
 
-    shorter = subprocess.run(command(end_time=0.15, interval=0.05), env=environment(tmp_path),
+    shorter = subprocess.run(command(end_time=0.15, interval=0.05, small=True),
+                             env=environment(tmp_path),
                              capture_output=True, text=True, timeout=600)
     assert shorter.returncode == 0, shorter.stderr
     assert "kept as it is" in shorter.stderr and "longer than asked" in shorter.stderr
@@ -288,7 +314,8 @@ def test_hostfile(tmp_path):
     oversubscribe them, which Open MPI's busy-waiting makes ~100× slower)."""
     hostfile = tmp_path / "hosts"
     hostfile.write_text("localhost slots=2\n")
-    proc = subprocess.run(command("--np", "2", "--hostfile", str(hostfile), end_time=0.05),
+    proc = subprocess.run(command("--np", "2", "--hostfile", str(hostfile), end_time=0.05,
+                                  small=True),
                           env=environment(tmp_path), capture_output=True, text=True,
                           timeout=600)
     assert proc.returncode == 0, proc.stderr
@@ -326,9 +353,9 @@ def test_fatal_openfoam_error_reaches_the_message(tmp_path, monkeypatch, capsys)
 def test_batch_script_tasks_run_with_bash(tmp_path):
     script = tmp_path / "sweep.sh"
     made = subprocess.run([FLOATFOAM, "batch", CASE, "--levels", "coarse", "medium", "--set",
-                           "run.end_time=0.03", "--set", "run.write_interval=0.03", "--out",
-                           str(script)], env=environment(tmp_path), capture_output=True,
-                          text=True)
+                           "run.end_time=0.03", "--set", "run.write_interval=0.03",
+                           *SMALL_OGRID, "--out", str(script)], env=environment(tmp_path),
+                          capture_output=True, text=True)
     assert made.returncode == 0, made.stderr
     for task, level in enumerate(("coarse", "medium")):
         env = {**environment(tmp_path), "SLURM_ARRAY_TASK_ID": str(task)}

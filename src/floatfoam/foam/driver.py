@@ -31,7 +31,7 @@ from floatfoam.case import Case
 from floatfoam.errors import InputError
 from floatfoam.foam import domain, extension, paraview, runner
 from floatfoam.foam.motionlog import rebuild_motion
-from floatfoam.foam.ranks import check_free_cores, check_ranks
+from floatfoam.foam.ranks import check_free_cores, check_ranks, solver_lock, solver_turn
 from floatfoam.foam.render import render
 from floatfoam.foam.runlock import RunLock, lock_path
 from floatfoam.foam.timedirs import latest_time, set_aside_incomplete
@@ -137,6 +137,7 @@ def run_plan(plan: RunPlan, force: bool = False) -> RunResult:
     is written; the run holds the run directory's lock (:mod:`floatfoam.foam.runlock`) from
     start to end. ``force`` moves an earlier run aside and runs anew."""
     check_ranks(plan.np, plan.hostfile)
+    solver_lock()
     case, run_dir, label = plan.case, plan.run_dir, plan.label
     mesh = domain.plan(case, plan.level, plan.release, local=plan.local)  # bad input fails here
     runner.check_path(run_dir)
@@ -166,6 +167,7 @@ def check_run(case: Case, level: str, np_: int, equilibrium: Equilibrium, *,
     the plan (:func:`floatfoam.plan.runplan.resolve`) and :func:`check_plan`. Raises
     InputError; writes nothing."""
     check_ranks(np_, None)
+    solver_lock()
     check_plan(resolve(case, level, np_, build_dir=build_dir, equilibrium=equilibrium,
                        divisor=time_step_divisor, morphing=morphing))
 
@@ -222,11 +224,12 @@ def _locked_run(plan: RunPlan, mesh, force: bool, lock) -> RunResult:
               "series is rebuilt from its log", file=sys.stderr)
         rebuild_motion(run_dir / "log.interFoam", motion, reference)
     else:
-        check_free_cores(np_, hostfile, label=label)
-        runner.run_solver(run_dir, [str(solver_path(case))], end_time=info.end_time,
-                          np_=np_, hostfile=hostfile, motion_csv=motion, limits=limits,
-                          label=label, log_name="interFoam", keep_fds=(lock.fd,),
-                          reference=reference)
+        with solver_turn(label) as turn:  # FLOATFOAM_SOLVER_LOCK: runs naming one take turns
+            check_free_cores(np_, hostfile, label=label)
+            runner.run_solver(run_dir, [str(solver_path(case))], end_time=info.end_time,
+                              np_=np_, hostfile=hostfile, motion_csv=motion, limits=limits,
+                              label=label, log_name="interFoam", keep_fds=(lock.fd, *turn),
+                              reference=reference)
     paraview.reconstruct(run_dir)  # a parallel run's times, for ParaView's default reader
     layout.mark_done(run_dir, layout.FINISHED)
     return RunResult(run_dir, motion, info, resumed)

@@ -1,8 +1,12 @@
-"""How many MPI ranks a run takes: the default when --np is not given, and the check of a
-given --np and --hostfile. Light on purpose: every command's parser asks for the default."""
+"""How many MPI ranks a run takes: the default when --np is not given, the check of a given
+--np and --hostfile, the cores other runs already use, and the turns runs take at the cores
+(:envvar:`FLOATFOAM_SOLVER_LOCK`). Light on purpose: every command's parser asks for the
+default."""
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import os
 import sys
 from pathlib import Path
@@ -80,3 +84,43 @@ def check_free_cores(np_: int, hostfile: Path | None, *, label: str = "",
           "slower than alone (the ranks yield a core they wait on: Open MPI's "
           "mpi_yield_when_idle)", file=sys.stderr)
     return True
+
+
+#: the environment variable naming a lock file: runs that name the same one run their solvers
+#: one at a time (each waits for the others' to end), instead of sharing the cores
+SOLVER_LOCK = "FLOATFOAM_SOLVER_LOCK"
+
+
+def solver_lock() -> Path | None:
+    """The lock file :data:`SOLVER_LOCK` names, checked (InputError: a file that can be made
+    in an existing folder); None when it is unset or empty."""
+    value = os.environ.get(SOLVER_LOCK, "")
+    if not value:
+        return None
+    path = Path(value)
+    if path.is_dir() or not path.parent.is_dir():
+        raise InputError(f"{SOLVER_LOCK}={value}: valid is a file in an existing folder (the "
+                         "lock that runs naming it take turns on)")
+    return path
+
+
+@contextlib.contextmanager
+def solver_turn(label: str = ""):
+    """Hold the :data:`SOLVER_LOCK` file while the solver runs: a run that finds it held says
+    so in one line and waits for it (an interrupt stops the wait). Yields the held file's
+    descriptors (for the solver's watchdog, which holds the turn until a killed driver's solver
+    is gone: :mod:`floatfoam.foam.processes`); none without the variable, when runs do not
+    wait for each other."""
+    path = solver_lock()
+    if path is None:
+        yield ()
+        return
+    with open(path, "a") as handle:  # the lock goes with the file's closing
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            where = f"[{label}] " if label else ""
+            print(f"{where}waiting for the cores: another run's solver holds {path} "
+                  f"({SOLVER_LOCK})", file=sys.stderr, flush=True)
+            fcntl.flock(handle, fcntl.LOCK_EX)
+        yield (handle.fileno(),)
