@@ -1,7 +1,10 @@
 """The coarse CFD runs of the tests and what they are set beside: a case's run on 2 ranks
-(:func:`cfd`), Cummins' model in the DoFs the CFD leaves free (:func:`cummins`, its radiation
-coefficients computed once per body), and the decay analysis of a record (:func:`analysed`)."""
+(:func:`cfd`; :func:`shared_run` for a run several tests read), Cummins' model in the DoFs the
+CFD leaves free (:func:`cummins`, its radiation coefficients computed once per body), and the
+decay analysis of a record (:func:`analysed`)."""
 
+import fcntl
+import hashlib
 import json
 import math
 
@@ -27,6 +30,20 @@ def cfd(name, tmp_path, overrides=()):
     for column in ("z", "roll", "y"):
         assert np.all(np.isfinite(motion[column]))
     return case, theory_summary(case), motion, result.info
+
+
+def shared_run(name, overrides, runs):
+    """The build folder holding the coarse run of case ``name`` with ``overrides`` on 2 ranks,
+    made once for the tests that ask for the same run (``runs``: the session's shared folder,
+    conftest.shared_runs): the first to ask runs it, under a lock, and the others find it
+    finished. Tests read it, and write nothing into it."""
+    key = hashlib.sha256(json.dumps([name, list(overrides)]).encode()).hexdigest()[:12]
+    folder = runs / f"{name}-{key}"
+    folder.mkdir(parents=True, exist_ok=True)
+    with open(runs / f"{name}-{key}.lock", "a") as handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)  # released when the file closes
+        run_case(load_case(name, list(overrides)), "coarse", 2, build_dir=folder)
+    return folder
 
 
 _COEFFICIENTS = {}

@@ -28,6 +28,15 @@ def build(tmp_path, monkeypatch):
     return folder
 
 
+@pytest.fixture(scope="session")
+def shared_runs(request, tmp_path_factory):
+    """A folder the session's workers share, for the runs that several tests make alike
+    (tests/cfdcases.shared_run): beside the workers' own folders under pytest-xdist, in the
+    session's own folder without it."""
+    base = tmp_path_factory.getbasetemp()
+    return (base.parent if hasattr(request.config, "workerinput") else base) / "shared-runs"
+
+
 def pytest_collection_modifyitems(config, items):
     """Under pytest-xdist (make test: ``-n 2 --dist worksteal``), the tests that run the solver
     come first, the Slurm ones at their head: the first worker's half of the collection holds

@@ -21,6 +21,7 @@ from cfdcases import (
     extrema,
     first_sway,
     potential_period,
+    shared_run,
 )
 from steps import FAST_STEP
 
@@ -81,7 +82,7 @@ ROLL_RECORDS = {"elliptic_cylinder_roll": 2.0, "box_bilge": 3.0, "hyperbolic_cyl
 
 
 @pytest.mark.parametrize("name", list(ROLL_RECORDS))
-def test_section_roll(tmp_path, name):
+def test_section_roll(shared_runs, name):
     """Roll decay of 2D sections released heeled, free in sway and heave: the roll period
     within 5 % of Cummins' model free in the same DoFs (the potential-flow added inertia and
     its sway–roll coupling), G's sway with it, the motion stable over the record, the body
@@ -94,8 +95,9 @@ def test_section_roll(tmp_path, name):
     damping ratio on the ellipse and hyperbola. The 5 % is the issue's bound: the fine levels
     on the distances were within U_num ≤ 0.45 % and 0.3 % of their coarse whole records
     (+0.9 %, −1.4 %, +0.4 %: the cases' READMEs)."""
-    case, theory, motion, info = cfd(name, tmp_path,
-                                     [f"run.end_time={ROLL_RECORDS[name]}", *FAST_STEP])
+    overrides = [f"run.end_time={ROLL_RECORDS[name]}", *FAST_STEP]  # the ellipse's run is
+    # tests/foam/test_paraview.py's too: made once
+    case, theory, motion, info = cfd(name, shared_run(name, overrides, shared_runs), overrides)
     assert motion["roll"][0] == pytest.approx(case.release["heel"], abs=1e-3)  # from equilibrium
     decay = analysed(motion, "roll")
     assert decay["n_cycles"] >= 2.0

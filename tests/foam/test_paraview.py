@@ -9,6 +9,7 @@ import json
 
 import numpy as np
 import pytest
+from cfdcases import shared_run
 from fakes import fake_run
 from steps import FAST_STEP
 
@@ -74,7 +75,7 @@ def test_export_refuses_an_existing_vtk_folder(tmp_path, capsys):
 
 
 @pytest.mark.openfoam
-def test_a_parallel_roll_run_opens_in_paraview_and_analyses_as_roll(tmp_path, capsys):
+def test_a_parallel_roll_run_opens_in_paraview_and_analyses_as_roll(shared_runs, capsys):
     """elliptic_cylinder_roll on 2 ranks: the run folder holds elliptic_cylinder_roll.foam,
     and pyvista's POpenFOAMReader with its defaults (the reconstructed case) lists every time
     the ranks wrote, the body turned at the last one (the moving points reconstructed);
@@ -83,12 +84,11 @@ def test_a_parallel_roll_run_opens_in_paraview_and_analyses_as_roll(tmp_path, ca
     cycles (analysis.decay.MIN_CYCLES)."""
     import pyvista
 
-    from floatfoam.case import load_case
-    from floatfoam.foam.driver import run_case
     from floatfoam.layout import time_folders
 
-    case = load_case("elliptic_cylinder_roll", ["run.end_time=2.0", *FAST_STEP])
-    run = run_case(case, "coarse", 2, build_dir=tmp_path).run_dir
+    overrides = ["run.end_time=2.0", *FAST_STEP]  # test_section_roll's run: made once
+    run = shared_run("elliptic_cylinder_roll", overrides, shared_runs) / \
+        "elliptic_cylinder_roll" / "coarse"
     foam = run / "elliptic_cylinder_roll.foam"
     assert foam.is_file() and foam.read_bytes() == b""
     written = [t for t, _ in time_folders(run / "processor0")]
