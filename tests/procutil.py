@@ -11,9 +11,9 @@ from pathlib import Path
 #: runs whose checks are of the driver (where it ends, what it writes, a hostfile, a batch
 #: script, a study's tasks), not of the motion. Measured here, serial, to t = 0.6 s: 6.7 s
 #: against 28 s (`floatfoam run cylinder_heave --np 1 --set run.end_time=0.6 [SMALL_OGRID]`).
-SMALL_OGRID = ["--set", "mesh.cells_side=20", "--set", "mesh.cells_radial=8", "--set",
-               "mesh.cells_horizontal=20", "--set", "mesh.cells_below=15", "--set",
-               "mesh.cells_above=8"]
+SMALL_OGRID_SETTINGS = ["mesh.cells_side=20", "mesh.cells_radial=8", "mesh.cells_horizontal=20",
+                        "mesh.cells_below=15", "mesh.cells_above=8"]
+SMALL_OGRID = [word for setting in SMALL_OGRID_SETTINGS for word in ("--set", setting)]
 
 
 def processes_in(folder: Path) -> list[int]:

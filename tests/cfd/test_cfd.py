@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 import pytest
-from procutil import locked, processes_in
+from procutil import SMALL_OGRID_SETTINGS, locked, processes_in
 from steps import FAST_STEP
 
 from floatfoam.analysis.decay import analyse_decay, decay_dict
@@ -112,16 +112,19 @@ import sys
 from pathlib import Path
 from floatfoam.case import load_case
 from floatfoam.foam.driver import run_case
-case = load_case("cylinder_heave", ["run.end_time=0.5"])
+case = load_case("cylinder_heave", sys.argv[2:])
 run_case(case, "coarse", 1, build_dir=Path(sys.argv[1]))
 """
+# on the small O-grid (the check is of the driver, not the motion) to 0.8 s: ~6 s of solver
+# after the 0.2 s it is killed at
+RESUMED_RUN = ["run.end_time=0.8", *SMALL_OGRID_SETTINGS]
 
 
 def test_interrupted_run_resumes(tmp_path):
     """Kill a run (driver and solver) after it wrote t = 0.2 s; the same command resumes from
     the last written time and the motion series stays continuous."""
     run_dir = tmp_path / "cylinder_heave" / "coarse"
-    child = subprocess.Popen([sys.executable, "-c", RUN_IN_CHILD, str(tmp_path)],
+    child = subprocess.Popen([sys.executable, "-c", RUN_IN_CHILD, str(tmp_path), *RESUMED_RUN],
                              start_new_session=True, stdout=subprocess.DEVNULL,
                              stderr=subprocess.DEVNULL,  # its scratch folder in tmp_path:
                              env={**os.environ, "TMPDIR": str(tmp_path)})  # it is SIGKILLed
@@ -139,13 +142,12 @@ def test_interrupted_run_resumes(tmp_path):
         assert time.monotonic() < deadline, "the solver outlived its SIGKILLed driver"
         time.sleep(0.2)
 
-    result = run_case(load_case("cylinder_heave", ["run.end_time=0.5"]), "coarse", 1,
-                      build_dir=tmp_path)
+    result = run_case(load_case("cylinder_heave", RESUMED_RUN), "coarse", 1, build_dir=tmp_path)
     assert result.resumed
     log = (run_dir / "log.interFoam").read_text()
     resumed_part = log.split("floatfoam: resumed")[1]
     first = next(line for line in resumed_part.splitlines() if line.startswith("Time = "))
     assert float(first.split("=")[1]) > 0.19  # restarted from the written 0.2 s, not from 0
     t = read_motion(result.motion_csv)["time"]
-    assert t[0] < 1e-3 and t[-1] == pytest.approx(0.5, abs=1e-6)
+    assert t[0] < 1e-3 and t[-1] == pytest.approx(0.8, abs=1e-6)
     assert np.all(np.diff(t) > 0) and np.diff(t).max() < 0.01  # no overlap, no gap

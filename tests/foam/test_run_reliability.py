@@ -114,10 +114,12 @@ def test_race_sigterm_truncated_time_and_resume(tmp_path):
     solver with one line; a time folder cut short is set aside; the rerun resumes and ends at
     end_time with a continuous motion record."""
     run_dir = tmp_path / CASE / "coarse"
-    first = start(tmp_path)
+    # on the small O-grid to 1.2 s: ~11 s of solver after 0.2 s for the refused drivers
+    first = start(tmp_path, end_time=1.2, small=True)
     wait_until(lambda: (run_dir / "0.2" / "uniform" / "time").exists(), first)
     for extra in ((), ("--force",)):
-        second = subprocess.run(command(*extra), env=environment(tmp_path),
+        second = subprocess.run(command(*extra, end_time=1.2, small=True),
+                                env=environment(tmp_path),
                                 capture_output=True, text=True, timeout=120)
         assert second.returncode == 75, second.stderr
         assert f"PID {first.pid}, started " in last_line(second.stderr)
@@ -135,15 +137,15 @@ def test_race_sigterm_truncated_time_and_resume(tmp_path):
     field = latest / "U"
     field.write_bytes(field.read_bytes()[: field.stat().st_size // 2])  # a write cut short
 
-    rerun = subprocess.run(command(), env=environment(tmp_path), capture_output=True,
-                           text=True, timeout=600)
+    rerun = subprocess.run(command(end_time=1.2, small=True), env=environment(tmp_path),
+                           capture_output=True, text=True, timeout=600)
     assert rerun.returncode == 0, rerun.stderr
     assert "incomplete time folder" in rerun.stderr
     assert any(p.name.startswith(latest.name) for p in
                (run_dir / ".floatfoam" / "incomplete").iterdir())
     t = read_motion(run_dir / "motion.csv")["time"]
-    assert np.all(np.diff(t) > 0) and t[-1] == pytest.approx(0.6, abs=1e-9)
-    assert (run_dir / "0.6" / "uniform" / "time").is_file() and is_finished(run_dir)
+    assert np.all(np.diff(t) > 0) and t[-1] == pytest.approx(1.2, abs=1e-9)
+    assert (run_dir / "1.2" / "uniform" / "time").is_file() and is_finished(run_dir)
 
 
 @pytest.mark.parametrize("ranks", [1, 2])

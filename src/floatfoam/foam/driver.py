@@ -224,6 +224,11 @@ def _locked_run(plan: RunPlan, mesh, force: bool, lock) -> RunResult:
               "series is rebuilt from its log", file=sys.stderr)
         rebuild_motion(run_dir / "log.interFoam", motion, reference)
     else:
+        if resumed and (run_dir / "log.interFoam").is_file():
+            # the record from the log, which holds every step: a driver killed with SIGKILL
+            # leaves its solver running until the watchdog stops it (floatfoam.foam.processes),
+            # and the steps it made then, a time folder among them, reach the log alone
+            rebuild_motion(run_dir / "log.interFoam", motion, reference)
         with solver_turn(label) as turn:  # FLOATFOAM_SOLVER_LOCK: runs naming one take turns
             check_free_cores(np_, hostfile, label=label)
             runner.run_solver(run_dir, [str(solver_path(case))], end_time=info.end_time,
