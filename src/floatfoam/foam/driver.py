@@ -217,18 +217,19 @@ def _locked_run(plan: RunPlan, mesh, force: bool, lock) -> RunResult:
                            min_delta_t=STALL_FRACTION * case.settings.run.max_delta_t
                            / mesh.factor)
     reference = info.equilibrium_orientation
+    log = run_dir / "log.interFoam"
+    if resumed and log.is_file():
+        # the record from the log, which holds every step: a driver stopped after the
+        # solver's last step, or killed with SIGKILL while its solver ran on until the
+        # watchdog stopped it (floatfoam.foam.processes), left steps, a time folder among
+        # them, that reached the log alone
+        rebuild_motion(log, motion, reference)
     reached = latest_time(run_dir) if resumed else None
     if reached is not None and reached >= info.end_time * (1 - 1e-9):
         # the solver wrote end_time, and its driver stopped before saying so
         print(f"[{label}] the solver had reached end_time ({reached:g} s); the motion "
               "series is rebuilt from its log", file=sys.stderr)
-        rebuild_motion(run_dir / "log.interFoam", motion, reference)
     else:
-        if resumed and (run_dir / "log.interFoam").is_file():
-            # the record from the log, which holds every step: a driver killed with SIGKILL
-            # leaves its solver running until the watchdog stops it (floatfoam.foam.processes),
-            # and the steps it made then, a time folder among them, reach the log alone
-            rebuild_motion(run_dir / "log.interFoam", motion, reference)
         with solver_turn(label) as turn:  # FLOATFOAM_SOLVER_LOCK: runs naming one take turns
             check_free_cores(np_, hostfile, label=label)
             runner.run_solver(run_dir, [str(solver_path(case))], end_time=info.end_time,
