@@ -113,6 +113,13 @@ class RunSettings:
                                              " between the body and the nearest held wall)")
     solver: str | None = spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
     static_body: bool = spec(False, kind=bool, doc="hold the body still (still-water test)")
+    # a turn that shears the distances' zone past what its cells take (the 3D ellipsoid gave
+    # out 53° after its release; docs/morphing.md) meets a new mesh first
+    remesh_angle: float = spec(30.0, minimum=0.0, closed=True, maximum=180.0, added=True,
+                                doc="deg: the body's turn from the attitude its mesh was made "
+                                "at after which the run meshes the domain anew at the body's "
+                                "pose and maps the fields onto it (the distances' mesh motion, "
+                                "on a gmsh 2D section or 3D tank); 0: never")
     mesh_pose: str = spec("release", kind=str, doc="the body's pose the mesh is made at: "
                            "release, or equilibrium (heave releases; moved to the release "
                            "before the first step)")

@@ -42,11 +42,15 @@ class Tank:
 
 @dataclass(frozen=True)
 class Pose:
-    """Placement of the body frame in the earth frame: z_c (m), heel and trim (radians)."""
+    """Placement of the body frame in the earth frame: z_c (m), heel and trim (radians), and
+    the horizontal offsets x_c, y_c (m) of a body met on its way (a run's mesh made anew,
+    :mod:`floatfoam.foam.remesh`; a case's poses keep them 0)."""
 
     z_c: float = 0.0
     heel: float = 0.0
     trim: float = 0.0
+    x_c: float = 0.0
+    y_c: float = 0.0
 
 
 POSES = ("body", "equilibrium", "release")

@@ -3,6 +3,7 @@ motion CSV on resume, divergence checks, refuse/resume/force, a run continued to
 run.end_time (on synthetic run folders), and bad [run] input."""
 
 import json
+import math
 import shutil
 from pathlib import Path
 
@@ -86,6 +87,23 @@ def test_motion_writer_replaces_rows_after_restart(tmp_path):
     MotionWriter(path).append([step(t) for t in (0.2, 0.25)])  # resumed from 0.2
     times = np.loadtxt(path, delimiter=",", skiprows=1)[:, 0]
     assert times.tolist() == [0.1, 0.2, 0.25]
+
+
+def test_the_roll_of_a_body_that_turns_over_runs_on_through_180_degrees(tmp_path):
+    """Heeled 170°, 178°, 186°, 194°: the record says 186° and 194° (not −174°, −166°), in
+    one solver run and across a resume (the resumed writer continues from the kept rows)."""
+    from floatfoam.bodies.geometry import rotation
+
+    path = tmp_path / "motion.csv"
+
+    def step(t, heel):
+        return Step(t, 0.1, 0.01, np.zeros(3), rotation(math.radians(heel), 0.0), np.zeros(3),
+                    np.zeros(3))
+
+    MotionWriter(path).append([step(0.01, 170.0), step(0.02, 178.0), step(0.03, 186.0)])
+    MotionWriter(path).append([step(0.03, 186.0), step(0.04, 194.0)])  # resumed from 0.02
+    roll = np.loadtxt(path, delimiter=",", skiprows=1)[:, 4]
+    assert roll.tolist() == pytest.approx([170.0, 178.0, 186.0, 194.0], abs=1e-9)
 
 
 def test_a_restart_with_another_step_drops_the_interrupted_runs_later_rows(tmp_path):

@@ -146,16 +146,17 @@ def _wedge_angle() -> float:
 
 
 def generate(mesh: RunMesh, case: Case, level: str, equilibrium, folder: Path, *,
-             local: bool = True, pose_name: str = "release") -> RunMesh:
-    """Mesh a gmsh domain into ``folder/domain.msh`` (the body at its ``pose_name`` pose:
-    release or equilibrium); the cell count is checked against this machine's memory when
-    ``local``."""
+             local: bool = True, pose_name: str = "release", where=None,
+             name: str = "domain.msh") -> RunMesh:
+    """Mesh a gmsh domain into ``folder/name`` (the body at its ``pose_name`` pose: release or
+    equilibrium, or at the pose ``where``); the cell count is checked against this machine's
+    memory when ``local``."""
     if mesh.kind == "ogrid":
         return mesh
     from floatfoam.meshing.domains import build_domain
 
-    result = build_domain(case, level, mesh.kind, pose_name, path=Path(folder) / "domain.msh",
-                          equilibrium=equilibrium)
+    result = build_domain(case, level, mesh.kind, pose_name, path=Path(folder) / name,
+                          equilibrium=equilibrium, where=where)
     cells = int(result["cells"])
     _check_memory(cells, level, local, "[mesh.gmsh] sizes (body_cells, growth)")
     return replace(mesh, cells=cells, msh=Path(result["path"]),

@@ -29,7 +29,7 @@ from pathlib import Path
 from floatfoam import layout
 from floatfoam.case import Case
 from floatfoam.errors import InputError
-from floatfoam.foam import domain, extension, paraview, runner
+from floatfoam.foam import domain, extension, paraview, remesh, runner
 from floatfoam.foam.motionlog import rebuild_motion
 from floatfoam.foam.ranks import check_free_cores, check_ranks, solver_lock, solver_turn
 from floatfoam.foam.render import render
@@ -195,7 +195,7 @@ def _locked_run(plan: RunPlan, mesh, force: bool, lock) -> RunResult:
     paraview.write_foam_file(run_dir, case.name)
     if resumed:
         set_aside(case, run_dir, label)
-        restart = latest_time(run_dir) or 0.0
+        restart = latest_time(run_dir) or remesh.stopped_at(run_dir) or 0.0
         print(f"[{label}] resuming the run in {run_dir} from t = {restart:g} s")
     check = domain.make_polymesh(mesh, run_dir)
     if check is not None:
@@ -232,10 +232,17 @@ def _locked_run(plan: RunPlan, mesh, force: bool, lock) -> RunResult:
     else:
         with solver_turn(label) as turn:  # FLOATFOAM_SOLVER_LOCK: runs naming one take turns
             check_free_cores(np_, hostfile, label=label)
-            runner.run_solver(run_dir, [str(solver_path(case))], end_time=info.end_time,
-                              np_=np_, hostfile=hostfile, motion_csv=motion, limits=limits,
-                              label=label, log_name="interFoam", keep_fds=(lock.fd, *turn),
-                              reference=reference)
+            while True:
+                if remesh.pending(run_dir):  # the solver stopped for it: a mesh anew
+                    remesh.remesh(plan, mesh, run_dir, hostfile, label)
+                stop = remesh.trigger(case, mesh, run_dir)
+                runner.run_solver(run_dir, [str(solver_path(case))], end_time=info.end_time,
+                                  np_=np_, hostfile=hostfile, motion_csv=motion,
+                                  limits=limits, label=label, log_name="interFoam",
+                                  keep_fds=(lock.fd, *turn), reference=reference, stop=stop)
+                if stop is None or not stop.fired:
+                    break
+                remesh.mark_stopped(run_dir)
     paraview.reconstruct(run_dir)  # a parallel run's times, for ParaView's default reader
     layout.mark_done(run_dir, layout.FINISHED)
     return RunResult(run_dir, motion, info, resumed)

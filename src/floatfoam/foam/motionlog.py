@@ -27,14 +27,20 @@ from floatfoam.motion import MOTION_COLUMNS
 RESUMED = "// floatfoam: resumed"  # the separator the runner writes into a resumed log
 
 
+ANGLES = [MOTION_COLUMNS.index(name) for name in ("roll", "pitch", "yaw")]
+
+
 class MotionWriter:
     """Append motion rows to a CSV as the solver goes (header written once). On resume,
-    rows at or after the restart time replace the ones of the interrupted run."""
+    rows at or after the restart time replace the ones of the interrupted run. The angles run
+    on through ±180° (a body that turns over reaches 215°, not −145°): each is taken within
+    180° of the row before."""
 
     def __init__(self, path: Path, reference=None):
         self.path = Path(path)
         self.reference = reference  # the equilibrium attitude: angles are measured from it
         self.last_time = -math.inf
+        self.last_angles: list[float] | None = None
 
     def append(self, steps: list[Step]) -> None:
         rows = [r for r in (s.motion_row(self.reference) for s in steps) if r is not None]
@@ -45,8 +51,16 @@ class MotionWriter:
             self._keep_before(restart_time(steps) + 0.5 * _first_step(steps))
         with open(self.path, "a") as fh:
             for row in rows:
+                self._continue(row)
                 fh.write(",".join(f"{v:.10g}" for v in row) + "\n")
         self.last_time = rows[-1][0]
+
+    def _continue(self, row: list[float]) -> None:
+        """The row's angles within 180° of the last row's (whole turns added)."""
+        if self.last_angles is not None:
+            for k, last in zip(ANGLES, self.last_angles, strict=True):
+                row[k] += 360.0 * round((last - row[k]) / 360.0)
+        self.last_angles = [row[k] for k in ANGLES]
 
     def _keep_before(self, t: float) -> None:
         """Rewrite the file with the header and the complete rows before ``t`` (just after the
@@ -63,6 +77,7 @@ class MotionWriter:
                     continue
                 if len(values) == len(MOTION_COLUMNS) and values[0] < t:
                     kept.append(line)
+                    self.last_angles = [values[k] for k in ANGLES]
         fresh = self.path.with_name(self.path.name + ".new")
         fresh.write_text("\n".join(kept) + "\n")
         os.replace(fresh, self.path)

@@ -82,9 +82,10 @@ class Stall:
                     where = f" with the body at roll {roll:.1f}°, pitch {pitch:.1f}°"
                 return (f"the time step collapsed to {s.delta_t:.2g} s at t = {s.time:g} s"
                         f"{where}: the moving mesh squeezed its cells (a turn too large for "
-                        "morphing) or the flow blew up where the mesh motion changes fastest "
-                        "(even at a few degrees); on the six-DoF distances' motion, larger "
-                        "run.inner_distance and run.outer_distance spread the deformation")
+                        "morphing: a smaller run.remesh_angle) or the flow blew up where the "
+                        "mesh motion changes fastest (even at a few degrees); on the six-DoF "
+                        "distances' motion, larger run.inner_distance and run.outer_distance "
+                        "spread the deformation")
         return None
 
 
@@ -193,7 +194,8 @@ def _mpi(argv: list[str], np_: int, hostfile: Path | None = None) -> list[str]:
 def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                hostfile: Path | None = None, motion_csv: Path | None = None,
                limits: Limits = Limits(), label: str = "", progress_every: float = 10.0,
-               log_name: str | None = None, keep_fds=(), reference=None) -> list[Step]:
+               log_name: str | None = None, keep_fds=(), reference=None,
+               stop=None) -> list[Step]:
     """Run the solver, watching its log: progress line, motion CSV, divergence, and the end.
 
     The log of a resumed run is appended to ``log.<solver>`` after a separator, so earlier
@@ -201,7 +203,10 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
     lock, held by its watchdog); the motion's angles are from the attitude ``reference``
     (rotation tensor; default upright). A :class:`~floatfoam.interrupts.SignalInterruptError`
     stops it and is re-raised with the last time reached (``time``). A run that ends before
-    ``end_time`` is an error. Returns the parsed steps of this invocation.
+    ``end_time`` is an error, unless ``stop`` (an object whose ``check(steps)`` gives a reason
+    to stop, or None) gave one: the solver is then asked to write its current time and stop
+    (:func:`stop_at_write_now`), and ``stop.fired`` holds the reason. Returns the parsed steps
+    of this invocation.
     """
     name = log_name or Path(argv[0]).name
     label = label or run_dir.name
@@ -241,6 +246,12 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                         problem = stall.check(new_steps)
                         if problem:
                             raise RunError(f"{label}: stopped: {problem}; see {log}")
+                        if stop is not None and not stop.fired and not finished:
+                            stop.fired = stop.check(new_steps)
+                            if stop.fired:
+                                print(f"[{label}] t = {new_steps[-1].time:g} s: "
+                                      f"{stop.fired}", file=sys.stderr, flush=True)
+                                stop_at_write_now(run_dir)
                     if watcher.fatal and finished:
                         raise RunError(f"{label}: {name} stopped: {watcher.fatal_message()}; "
                                        f"see {log}{disk_note(run_dir)}")
@@ -267,14 +278,37 @@ def run_solver(run_dir: Path, argv: list[str], *, end_time: float, np_: int = 1,
                 raise
     finally:
         child.close()
+        if stop is not None and stop.fired:
+            stop_at_write_now(run_dir, False)
     if child.proc.returncode != 0:
         raise RunError(f"{label}: {name} failed (exit code {child.proc.returncode}); "
                        f"see {log}{disk_note(run_dir)}")
     reached = watcher.steps[-1].time if watcher.steps else None
+    if stop is not None and stop.fired:
+        if reached is not None and reached >= end_time * (1 - 1e-9) - 1e-12:
+            stop.fired = None  # it fired at the last step: the run is done all the same
+        else:
+            return watcher.steps
     if reached is None or reached < end_time * (1 - 1e-9) - 1e-12:
         raise RunError(f"{label}: {name} ended at t = {reached} s, short of end_time = "
                        f"{end_time:g} s; see {log}")
     return watcher.steps
+
+
+_STOP_AT = re.compile(r"^stopAt\s+\w+;", re.MULTILINE)
+
+
+def stop_at_write_now(run_dir: Path, now: bool = True) -> None:
+    """Ask the running solver to write its current time and stop (``stopAt writeNow`` in its
+    controlDict, which it reads again at its next step: ``runTimeModifiable yes``), or put
+    ``stopAt endTime`` back (``now`` False). The file is replaced whole, so the solver never
+    reads it half written."""
+    path = run_dir / "system" / "controlDict"
+    text = _STOP_AT.sub(f"stopAt {'writeNow' if now else 'endTime'};", path.read_text(),
+                        count=1)
+    fresh = path.with_name(path.name + ".new")
+    fresh.write_text(text)
+    os.replace(fresh, path)
 
 
 def _time_written(run_dir: Path, t: float) -> bool:

@@ -86,14 +86,15 @@ def body_triangles(body, spec: MeshSpec) -> tuple[np.ndarray, np.ndarray]:
 
 def place(vertices: np.ndarray, where: Pose) -> np.ndarray:
     """Body-frame points (N, 3) placed in the earth frame at a pose."""
-    return to_earth(vertices, where.z_c, where.heel, where.trim)
+    return to_earth(vertices, where.z_c, where.heel, where.trim) + [where.x_c, where.y_c, 0.0]
 
 
 def place_section(polygon: np.ndarray, where: Pose) -> np.ndarray:
-    """A (y, z) section polygon heeled and raised to a pose (a 2D section has no trim)."""
+    """A (y, z) section polygon heeled, raised and swayed to a pose (a 2D section has no
+    trim)."""
     c, s = math.cos(where.heel), math.sin(where.heel)
     y, z = polygon[:, 0], polygon[:, 1]
-    return np.column_stack([c * y - s * z, s * y + c * z + where.z_c])
+    return np.column_stack([c * y - s * z + where.y_c, s * y + c * z + where.z_c])
 
 
 def write_body(case, spec: MeshSpec, where: Pose, folder: Path, stem: str = "body") -> dict:

@@ -121,7 +121,7 @@ def _solid_body(gmsh, body, where: Pose, tank: Tank, spec: MeshSpec,
     solid = sections.add_solid(body)
     occ.rotate([(3, solid)], 0, 0, 0, 1, 0, 0, where.heel)
     occ.rotate([(3, solid)], 0, 0, 0, 0, 1, 0, where.trim)
-    occ.translate([(3, solid)], 0, 0, where.z_c)
+    occ.translate([(3, solid)], where.x_c, where.y_c, where.z_c)
     box = occ.getBoundingBox(3, solid)
     _check_room(np.array(box[:3]), np.array(box[3:]), tank, spec)
     x0 = 0.0 if half == "x" else -tank.half_length

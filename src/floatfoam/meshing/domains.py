@@ -29,23 +29,25 @@ KINDS = ("auto", "2d", "wedge", "3d", "3d-half")
 
 
 def build_domain(case, level: str, kind: str = "auto", pose_name: str = "release",
-                 path: Path | None = None, equilibrium=None) -> dict:
+                 path: Path | None = None, equilibrium=None, where=None) -> dict:
     """Mesh the fluid domain of ``case`` at ``level`` with the body at a pose and write it
     (default ``build/<case>/mesh/<level>/domain_<kind>.msh``).
 
     Returns the summary of the mesher (``path``, ``cells``, ``cell_types``, ``patches``) with
     ``kind``, ``level``, ``sizes`` (m) and ``body_patch``: the immersed volume of the body
     patch at this pose against the exact body's there. ``equilibrium``: the case's, when it is
-    already solved.
+    already solved; ``where``: a pose of its own (a :class:`floatfoam.tank.Pose`, the body met
+    on its way by a run's remeshing) instead of the named one.
     """
     if kind not in KINDS:
         raise InputError(f"--kind {kind!r}: valid kinds are {', '.join(KINDS)}")
     spec, box = mesh_spec(case, level), tank(case)
-    if equilibrium is None and pose_name != "body":
-        from floatfoam.hydrostatics.theory import equilibrium as solve
+    if where is None:
+        if equilibrium is None and pose_name != "body":
+            from floatfoam.hydrostatics.theory import equilibrium as solve
 
-        equilibrium = solve(case)
-    where = pose(case, pose_name, equilibrium)
+            equilibrium = solve(case)
+        where = pose(case, pose_name, equilibrium)
     kind = default_kind(case, where) if kind == "auto" else kind
     if kind == "2d" and not case.body.is_section:
         raise InputError(f"--kind 2d: the body of {case.name} is not a 2D section; valid kinds "

@@ -95,9 +95,9 @@ def divisions(edges: list[float], core: int, spec: MeshSpec) -> list[Division]:
 
 
 def core_bounds(radius: float, where: Pose, spec: MeshSpec, tank: Tank) -> tuple[float, ...]:
-    """The core block: half-width c and rows [v_lo, v_hi] around the body (any heel) and the
-    free-surface band; checked against the tank."""
-    c = radius + spec.margin
+    """The core block: half-width c and rows [v_lo, v_hi] around the body (any heel, swayed
+    by y_c) and the free-surface band; checked against the tank."""
+    c = radius + abs(where.y_c) + spec.margin
     v_lo = min(where.z_c - radius - spec.margin, -tank.band)
     v_hi = max(where.z_c + radius + spec.margin, tank.band)
     checks = [("half_length", tank.half_length, c), ("depth", tank.depth, -v_lo),
@@ -123,7 +123,7 @@ def planar_domain(case, spec: MeshSpec, tank: Tank, where: Pose, kind: str,
     else:
         wedge_ready(case, where)
         polygon = body_surface.meridian_polyline(body, spec) + [0.0, where.z_c]
-    radius = float(np.max(np.hypot(*(polygon - [0.0, where.z_c]).T)))
+    radius = float(np.max(np.hypot(*(polygon - [where.y_c, where.z_c]).T)))
     with gmshio.session(f"{case.name}-{kind}") as gmsh:
         groups = _build(gmsh, polygon, radius, spec, tank, where, kind)
         gmshio.write_msh22(path)
