@@ -40,6 +40,8 @@ LEVELS = ("coarse", "medium", "fine")
 
 MARKERS = ".floatfoam"  # folder of the driver's step markers in a run directory
 FINISHED = "finished"  # the step that marks a run finished
+REMESHED = "remeshed"  # remeshed/<k>/ in a run directory: the run on its k-th mesh, up to its
+                       # remeshing (floatfoam.foam.remesh)
 
 
 def build_dir() -> Path:
@@ -106,6 +108,13 @@ def mark_done(run: Path, step: str) -> None:
 def is_finished(run: Path) -> bool:
     """Whether the driver marked this run directory finished."""
     return step_done(run, FINISHED)
+
+
+def mesh_parts(run: Path) -> list[Path]:
+    """The cases a run's record lies in, in time order: each mesh's that a remeshing kept
+    (``remeshed/1``, ``remeshed/2``, …), then the run directory (its last mesh)."""
+    kept = [p for p in (Path(run) / REMESHED).glob("*") if p.is_dir() and p.name.isdigit()]
+    return sorted(kept, key=lambda p: int(p.name)) + [Path(run)]
 
 
 def time_folders(root: Path) -> list[tuple[float, Path]]:

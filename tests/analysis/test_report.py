@@ -297,3 +297,32 @@ def test_report_sets_a_roll_record_beside_ikeda_and_potential_flow(tmp_path):
            "against amplitude; beside Ikeda's components and potential flow" in md
     ikeda = roll_damping(case, equilibrium(case), potential_summary(case), 10.0)
     assert ikeda.eddy > ikeda.wave > 0  # the box's bilges separate: eddies, not waves
+
+
+def test_report_draws_a_body_that_turns_over_beside_the_nonlinear_model(tmp_path):
+    """A record of a body the theory says capsizes (SYNTHETIC: the roll of
+    ellipsoid_printed_verdict's nonlinear inviscid model itself, 5° to past 180°, as the CFD
+    would write it) has no period to fit: the report draws its attitude beside the nonlinear
+    model under "Turning over", and the summary says it turns over instead of a failed
+    analysis."""
+    from floatfoam.potential.models import decay_series
+
+    cases, build = tmp_path / "cases", tmp_path / "build"
+    (cases / "over").mkdir(parents=True)
+    (cases / "over" / "case.toml").write_text(
+        (ROOT / "cases" / "ellipsoid_printed_verdict" / "case.toml").read_text())
+    case = load_case(str(cases / "over"))
+    series = decay_series(case, "nonlinear", duration=0.7)
+    assert series["roll"].max() > 180.0  # the record runs on through 180°
+    write_motion(build / case.name / "coarse" / "motion.csv", series["time"],
+                 roll=series["roll"])
+    mark_done(build / case.name / "coarse", "finished")
+    html_path = build_report(cases_dir=cases, build_dir=build,
+                             sources=Sources.default(include_potential=False))
+    md = html_path.with_suffix(".md").read_text()
+    figure = html_path.parent / case.name / "coarse_roll_turn.png"
+    assert figure.stat().st_size > 0
+    assert "### Turning over" in md
+    assert f"{case.name} coarse: roll of a body that turns over, beside the nonlinear " \
+           "inviscid model" in md
+    assert "turns over: coarse" in md and "failed: CFD coarse" not in md

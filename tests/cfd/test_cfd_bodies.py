@@ -244,8 +244,18 @@ def test_capsizing_ellipse_turns_over_to_its_stable_attitude(tmp_path):
     after = roll[peak:]
     assert after.min() < stable < roll[peak]  # and swings back about it (53.7° by 1.6 s)
     assert after.min() > 20.0  # never back to upright
-    # the mesh made anew on the way, each 30° of turn (measured: at 34.5° and 65.6°)
-    assert list((tmp_path / case.name / "coarse" / "remeshed").iterdir())
+    # the mesh made anew on the way, each 30° of turn (measured: at 34.5° and 65.6°), and the
+    # pictures read each time on its own mesh: the body patch upright at 0.5 s (taller than
+    # wide: the ellipse stands on its major axis, 0.30 × 0.20 m) and lying over at the peak
+    from floatfoam.analysis.flowview import open_run
+
+    run = open_run(tmp_path / case.name / "coarse")
+    assert len(run.parts) >= 2 and run.times[-1] == pytest.approx(1.6)
+    for when, heel in ((0.5, float(np.interp(0.5, t, roll))), (t[peak], roll[peak])):
+        _, body = run.read(float(run.times[np.argmin(np.abs(run.times - when))]))
+        b = body.bounds
+        wide, tall = b[3] - b[2], b[5] - b[4]
+        assert (tall > wide) == (heel < 45.0), (when, heel, wide, tall)
 
 
 def test_triaxial_ellipsoid_roll_3d(tmp_path):

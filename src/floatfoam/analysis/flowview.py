@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam.errors import InputError
-from floatfoam.layout import time_folders
+from floatfoam.layout import mesh_parts, time_folders
 from floatfoam.plan.record import has_record, read_record, record_path
 
 SLABS, WEDGES, SOLIDS = ("2d", "ogrid"), ("wedge",), ("3d", "3d-half")
@@ -55,11 +55,18 @@ class Run:
     times: np.ndarray
     mesh: str
     dof: str
+    parts: tuple = ()  # (reader, its times) of each mesh of a remeshed run, in time order
 
     def read(self, time: float):
-        """The internal mesh (point data only) and the body patch at a written time."""
-        self.reader.set_active_time_value(time)
-        blocks = self.reader.read()
+        """The internal mesh (point data only) and the body patch at a written time (on the
+        mesh of that time, for a remeshed run)."""
+        reader = self.reader
+        for part, times in self.parts:
+            reader = part
+            if times.size and time <= times[-1] + 1e-9:
+                break
+        reader.set_active_time_value(time)
+        blocks = reader.read()
         internal = blocks["internalMesh"]
         internal.clear_cell_data()  # the reader interpolates every field to the points
         return internal, blocks["boundary"]["body"]
@@ -93,22 +100,30 @@ def open_run(run_dir) -> Run:
     if mesh not in SLABS + WEDGES + SOLIDS:
         raise InputError(f"{record_path(run)}: mesh = {mesh!r}; valid are "
                          f"{', '.join(SLABS + WEDGES + SOLIDS)}")
-    reader = offscreen_pyvista().POpenFOAMReader(str(run / "system" / "controlDict"))
-    if decomposed(run):
-        reader.case_type = "decomposed"
-    reader.disable_all_patch_arrays()
-    reader.enable_patch_array("internalMesh")
-    if "patch/body" not in reader.patch_array_names:
-        raise InputError(f"run directory {run}: no patch 'body'; valid is a floating-body run")
-    reader.enable_patch_array("patch/body")
-    times = np.asarray(reader.time_values, dtype=float)
+    parts = []
+    for folder in mesh_parts(run):  # a remeshed run's meshes, each its own case
+        reader = offscreen_pyvista().POpenFOAMReader(str(folder / "system" / "controlDict"))
+        if decomposed(folder):
+            reader.case_type = "decomposed"
+        reader.disable_all_patch_arrays()
+        reader.enable_patch_array("internalMesh")
+        if "patch/body" not in reader.patch_array_names:
+            raise InputError(f"run directory {run}: no patch 'body'; valid is a floating-body "
+                             "run")
+        reader.enable_patch_array("patch/body")
+        times = np.asarray(reader.time_values, dtype=float)
+        if parts:  # a remeshing's time is the earlier mesh's
+            times = times[times > parts[-1][1][-1] + 1e-9]
+        parts.append((reader, times))
+    reader = parts[0][0]
+    times = np.concatenate([t for _, t in parts])
     if times.size < 2 or times.max() <= 0.0:
         raise InputError(f"run directory {run}: no written time beyond 0; valid is a run that "
                          "wrote fields (run.write_interval below run.end_time)")
     if WATER not in reader.cell_array_names:
         raise InputError(f"run directory {run}: no field {WATER}; valid is an interFoam run")
     dof = "roll" if info.heel else "pitch" if info.trim else "heave"
-    return Run(run, reader, times, mesh, dof)
+    return Run(run, reader, times, mesh, dof, tuple(parts) if len(parts) > 1 else ())
 
 
 def decomposed(run: Path) -> bool:

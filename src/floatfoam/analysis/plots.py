@@ -198,6 +198,32 @@ def plot_decay(path: str | Path, time, value, result: DecayResult, *,
     return path
 
 
+def plot_turn(path: str | Path, time, angle, model=None, *, stable=None, unit: str = "deg",
+              title: str = "", label: str = "CFD") -> Path:
+    """Write the figure of a body that turns over to ``path``: its attitude ``angle`` (file
+    units) against ``time``, beside ``model`` (time, angle: the nonlinear inviscid model) and
+    the GZ curve's ``stable`` attitudes (horizontal lines)."""
+    fig = Figure(figsize=(9, 4.5), layout="constrained")
+    ax = fig.add_subplot()
+    ax.plot(time, angle, color="C0", lw=1.6, label=label)
+    if model is not None:
+        ax.plot(model[0], model[1], color="C1", lw=1.0, ls="--",
+                label="nonlinear inviscid model (exact GZ, no added inertia, no damping)")
+    for k, value in enumerate(stable or ()):
+        ax.axhline(value, color="0.4", lw=0.8, ls=":",
+                   label="stable attitudes of the GZ curve" if k == 0 else None)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel(f"attitude ({unit})")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    if title:
+        ax.set_title(title)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    return path
+
+
 def plot_extinction(path: str | Path, curve: ExtinctionCurve, *, scale: float = 1.0,
                     unit: str = "", title: str = "", references=()) -> Path:
     """Write the extinction figure of one record to ``path`` (file units: ``scale`` × code).

@@ -35,7 +35,8 @@ from floatfoam import dofs, layout
 from floatfoam.analysis.compare import Comparison, compare_case, memoir_label
 from floatfoam.analysis.comparison_table import comparison_table, fmt, write_comparison
 from floatfoam.analysis.document import Document
-from floatfoam.analysis.report_figures import case_figures, record_figures
+from floatfoam.analysis.report_figures import case_figures, record_figures, turn_figures
+from floatfoam.analysis.runs import current_runs
 from floatfoam.analysis.sources import Sources
 from floatfoam.errors import InputError
 from floatfoam.hydrostatics.summary import TheorySummary
@@ -121,10 +122,15 @@ def _comparison_section(doc: Document, comparison: Comparison) -> None:
     doc.bullets(comparison.notes)
 
 
-def _status(comparison: Comparison) -> str:
+def _status(comparison: Comparison, turned: tuple = ()) -> str:
+    """The summary table's CFD cell: the levels analysed, those whose analysis failed, and
+    ``turned``, the levels of a body that turns over (no period to fit: their figure shows
+    them)."""
     levels = sorted({run.level for run in comparison.analyses})
-    failed = [r["source"] for r in comparison.rows if r["note"].startswith("analysis failed")]
+    failed = [r["source"] for r in comparison.rows if r["note"].startswith("analysis failed")
+              and r["source"].removeprefix("CFD ") not in turned]
     status = "CFD: " + ", ".join(levels) if levels else "theory only"
+    status += f"; turns over: {', '.join(turned)}" if turned else ""
     status += f"; failed: {', '.join(failed)}" if failed else ""
     left_out = comparison.foreign + (["the study"] if comparison.foreign_study else [])
     return status + (f"; left out, of other settings: {', '.join(left_out)}" if left_out else "")
@@ -157,12 +163,21 @@ def _case_section(doc: Document, folder: Path, build_dir: Path, out_dir: Path,
         doc.heading("Decay records", 3)
         for src, alt in images:
             doc.image(src, alt)
+    runs, _ = current_runs(case, build_dir)
+    turns = turn_figures(case, theory, runs, out_dir)
+    if turns:
+        doc.heading("Turning over", 3)
+        for src, alt in turns:
+            doc.image(src, alt)
     case_figures(doc, case, sources, out_dir)
     if pictures:
-        _pictures_section(doc, case.name, sorted({r.level for r in comparison.analyses},
-                                                 key=layout.LEVELS.index), build_dir, out_dir)
+        levels = {r.level for r in comparison.analyses}  # and a turn over's runs, unfitted
+        levels |= {level for level, _ in runs if level in layout.LEVELS} if turns else set()
+        _pictures_section(doc, case.name, sorted(levels, key=layout.LEVELS.index), build_dir,
+                          out_dir)
     _validation_section(doc, case.name, comparison.study, build_dir, out_dir)
-    return [case.name, title or "—", _periods_cell(theory), _status(comparison)], \
+    turned = tuple(level for level, _ in runs) if turns else ()
+    return [case.name, title or "—", _periods_cell(theory), _status(comparison, turned)], \
         comparison.study
 
 

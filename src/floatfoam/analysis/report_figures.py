@@ -1,6 +1,7 @@
 """The report's figures of a case (:mod:`floatfoam.analysis.report`): each CFD record's decay
 beside Cummins' model and any measurement, a roll record's extinction curve beside Ikeda's
-components and potential flow (:func:`record_figures`), and the righting arm GZ and the
+components and potential flow (:func:`record_figures`), the attitude of a body that turns over
+beside the nonlinear inviscid model (:func:`turn_figures`), and the righting arm GZ and the
 radiation coefficients (:func:`case_figures`)."""
 
 from __future__ import annotations
@@ -10,7 +11,7 @@ from pathlib import Path
 from floatfoam.analysis.compare import Comparison
 from floatfoam.analysis.document import Document
 from floatfoam.analysis.overlay import decay_overlay
-from floatfoam.analysis.plots import plot_decay
+from floatfoam.analysis.plots import plot_decay, plot_turn
 from floatfoam.analysis.sources import Sources
 from floatfoam.errors import InputError
 from floatfoam.motion import file_unit
@@ -32,6 +33,36 @@ def record_figures(case, theory, comparison: Comparison, out_dir: Path,
         images.append((name, f"{case.name} {run.level} {run.dof} decay{beside}"))
         if run.dof == "roll":
             images += extinction_plot(case, run, out_dir, scale, unit, sources)
+    return images
+
+
+def turn_figures(case, theory, runs, out_dir: Path) -> list[tuple[str, str]]:
+    """A body released in a DoF the theory says capsizes (roll or pitch): each CFD record's
+    attitude against time (``runs``: (level, motion.csv) pairs) beside the nonlinear inviscid
+    model (exact GZ, no added inertia, no damping: `floatfoam decay-model CASE --model
+    nonlinear`), whose record a decay fit has no period for. (file, caption) pairs under
+    ``out_dir``."""
+    from floatfoam import dofs
+    from floatfoam.motion import read_motion
+    from floatfoam.potential.models import decay_series
+
+    turning = [d.name for d in dofs.released(case.release)
+               if d.name in theory.dofs and theory.dofs[d.name].verdict == "capsizes"]
+    images = []
+    for dof in turning:
+        column, (_, unit) = dofs.dof(dof).column, file_unit(dof)
+        for level, path in runs:
+            motion = read_motion(path)
+            try:
+                model = decay_series(case, "nonlinear", duration=float(motion["time"][-1]))
+                beside = (model["time"], model[column])
+            except (InputError, ValueError, RuntimeError):
+                beside = None
+            name = f"{case.name}/{level}_{dof}_turn.png"
+            plot_turn(out_dir / name, motion["time"], motion[column], beside, unit=unit,
+                      title=f"{case.name}, {level} mesh: {dof} (capsizes)")
+            images.append((name, f"{case.name} {level}: {dof} of a body that turns over, "
+                                 "beside the nonlinear inviscid model"))
     return images
 
 

@@ -42,7 +42,7 @@ from floatfoam import layout
 from floatfoam.foam import domain, runner
 from floatfoam.tank import Pose
 
-ARCHIVE = "remeshed"  # remeshed/<k>: the run on its k-th mesh, up to its remeshing
+ARCHIVE = layout.REMESHED  # remeshed/<k>: the run on its k-th mesh, up to its remeshing
 KINDS = ("2d", "3d", "3d-half")  # the gmsh meshes a pose can be remade in
 YAW_LIMIT = math.radians(0.5)  # a turn about the vertical (which heel and trim cannot make)
 
@@ -176,18 +176,20 @@ def remesh(plan, mesh, run_dir: Path, hostfile: Path | None, label: str) -> None
     k = done(run_dir) + 1
     tag = f"remesh{k}"
     archive = run_dir / ARCHIVE / str(k)
+    at = archive / "remeshed-at"  # the time remeshed at, written before anything moves
     if not layout.step_done(run_dir, f"{tag}.keep"):
-        t = latest_time(run_dir)
-        if t is None:
-            raise runner.RunError(f"{label}: remeshing {k}: the solver wrote no time to "
-                                  "remesh from")
-        time_name = _name(run_dir, t)
+        if not at.is_file():
+            t = latest_time(run_dir)
+            if t is None:
+                raise runner.RunError(f"{label}: remeshing {k}: the solver wrote no time to "
+                                      "remesh from")
+            archive.mkdir(parents=True, exist_ok=True)
+            at.write_text(_name(run_dir, t) + "\n")
         if np_ > 1:  # the mesh's times gathered, for mapFields and ParaView
             runner.run_app(run_dir, f"{tag}.reconstructPar", ["reconstructPar", "-newTimes"])
         _keep(run_dir, archive, case.name)
-        (archive / "remeshed-at").write_text(time_name + "\n")
         layout.mark_done(run_dir, f"{tag}.keep")
-    time_name = (archive / "remeshed-at").read_text().strip()
+    time_name = at.read_text().strip()
     state = body_state(archive, time_name)
     where = pose_of(case, mesh, state)
     if not layout.step_done(run_dir, f"{tag}.mesh"):
