@@ -313,7 +313,7 @@ def test_triaxial_ellipsoid_pitch_3d(tmp_path):
     assert np.mean(motion["z"]) == pytest.approx(info.z_G_equilibrium, abs=0.01 * theory.draft)
 
 
-@pytest.mark.extended  # make test-extended: ~9 min on 2 ranks, past make test's budget
+@pytest.mark.extended  # make test-extended: 10.4 min on 2 ranks, past make test's budget
 def test_the_ellipsoid_the_print_calls_stable_turns_over_in_the_fluid(tmp_path):
     """ellipsoid_printed_verdict: the oblate ellipsoid with G high, which the memoir's printed
     criterion says oscillates and the exact theory says capsizes (its GZ curve negative from 0°

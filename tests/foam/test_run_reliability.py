@@ -5,7 +5,8 @@ Each test drives the ``floatfoam`` console script in its own process, as a user 
 driver stopped with SIGTERM, SIGINT, SIGHUP (after gmsh meshed the domain, elliptic_cylinder) or
 SIGKILL while interFoam runs, a time folder cut short, a run ending exactly at
 end_time, a finished run continued to a later end_time, a hostfile, an odd rank count, a fatal
-OpenFOAM error, and the Slurm batch script's tasks run with bash.
+OpenFOAM error, the Slurm batch script's tasks run with bash, and a run stopped while it meshes
+the domain anew (elliptic_cylinder_capsize).
 """
 
 from __future__ import annotations
@@ -365,3 +366,44 @@ def test_batch_script_tasks_run_with_bash(tmp_path):
                               timeout=600)
         assert proc.returncode == 0, proc.stderr
         assert is_finished(tmp_path / CASE / level)
+
+
+def test_a_run_stopped_while_it_remeshes_resumes(tmp_path):
+    """elliptic_cylinder_capsize meshed anew each 5° of turn (run.remesh_angle = 5, from its
+    2° release to 18.6° at 0.7 s: two remeshings, measured at 7.7° and 14.2°), on 2 ranks; the
+    driver is stopped with SIGTERM as soon as the first remeshing has moved its run aside
+    (while the section is meshed anew, or just after), and the same command finishes the run:
+    each remeshing once, its archive whole, the motion record continuous through them."""
+    build = tmp_path / "build"
+    run_dir = build / "elliptic_cylinder_capsize" / "coarse"
+    argv = command("--np", "2", "--set", "run.remesh_angle=5", case="elliptic_cylinder_capsize",
+                   end_time=0.7)
+    child = subprocess.Popen(argv, env=environment(build), stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 300
+    while not layout.step_done(run_dir, "remesh1.keep"):
+        assert child.poll() is None and time.monotonic() < deadline
+        time.sleep(0.05)
+    child.send_signal(signal.SIGTERM)
+    _, err = child.communicate(timeout=60)
+    assert child.returncode == 128 + signal.SIGTERM, err
+    assert not is_finished(run_dir) and not processes_in(run_dir)
+
+    again = subprocess.run(argv, env=environment(build), capture_output=True, text=True,
+                           timeout=600)
+    assert again.returncode == 0, again.stderr
+    assert is_finished(run_dir)
+    kept = sorted(int(p.name) for p in (run_dir / "remeshed").iterdir())
+    assert kept == [1, 2], again.stderr  # each remeshing once
+    for k in kept:  # each archive a case: its mesh, its times gathered from the ranks
+        archive = run_dir / "remeshed" / str(k)
+        at = (archive / "remeshed-at").read_text().strip()
+        assert (archive / "constant" / "polyMesh" / "faces").is_file()
+        assert (archive / at / "alpha.water").is_file()
+    assert again.stderr.count("remeshing 1 at") <= 1  # resumed where it stopped, not redone
+    motion = read_motion(run_dir / "motion.csv")
+    t, roll = motion["time"], motion["roll"]
+    assert t[-1] == pytest.approx(0.7, abs=1e-6)
+    assert np.all(np.diff(t) > 0) and np.diff(t).max() < 0.01  # no overlap, no gap
+    assert np.abs(np.diff(roll)).max() < 0.5  # no jump at a remeshing (deg per step)
+    assert roll[-1] > 15.0  # turned on (measured 18.6°)
