@@ -124,11 +124,13 @@ def test_the_body_state_gives_g_from_the_centre_of_rotation(tmp_path):
 
 
 @pytest.mark.parametrize("name, kind", [("elliptic_cylinder_capsize", "2d"),
-                                        ("ellipsoid_printed_verdict", "3d-half")])
+                                        ("ellipsoid_printed_verdict", "3d-half"),
+                                        ("stl_pontoon", "3d-half")])  # triangles, layers
 def test_a_mesh_made_at_a_pose_met_on_the_way(tmp_path, name, kind):
     """A body heeled past 90° and swayed is meshed there, its body patch's immersed volume
     within 1 % of the exact body's at that pose (the discrete body's own error: −0.38 % at the
-    ellipsoid's release)."""
+    ellipsoid's release; a body given by triangles is its triangles, and its prism layers are
+    grown at that pose)."""
     case = load_case(name)
     where = Pose(z_c=-0.012, heel=math.radians(127.0), y_c=-0.03)
     result = build_domain(case, "coarse", kind, path=tmp_path / "m.msh", where=where)
