@@ -176,6 +176,14 @@ def _damping_panel(ax, result: DecayResult, overlay: Overlay, scale, unit):
     ax.legend(fontsize=7)
 
 
+def _save(fig, path: str | Path, dpi: int = 110, **options) -> Path:
+    """Write ``fig`` to ``path`` (its folder made when missing); returns the path."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=dpi, **options)
+    return path
+
+
 def plot_decay(path: str | Path, time, value, result: DecayResult, *,
                overlay: Overlay | None = None, scale: float = 1.0, unit: str = "",
                title: str = "") -> Path:
@@ -191,11 +199,8 @@ def plot_decay(path: str | Path, time, value, result: DecayResult, *,
     _damping_panel(fig.add_subplot(grid[1, 2]), result, overlay, scale, unit)
     if title:
         fig.suptitle(title)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     legend = "\n".join(motion.get_legend_handles_labels()[1])
-    fig.savefig(path, dpi=110, metadata={"Description": legend})
-    return path
+    return _save(fig, path, metadata={"Description": legend})
 
 
 def plot_turn(path: str | Path, time, angle, model=None, *, stable=None, unit: str = "deg",
@@ -218,10 +223,7 @@ def plot_turn(path: str | Path, time, angle, model=None, *, stable=None, unit: s
     ax.legend(loc="best", fontsize=8)
     if title:
         ax.set_title(title)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    return path
+    return _save(fig, path)
 
 
 def plot_extinction(path: str | Path, curve: ExtinctionCurve, *, scale: float = 1.0,
@@ -269,10 +271,7 @@ def plot_extinction(path: str | Path, curve: ExtinctionCurve, *, scale: float = 
     right.legend(fontsize=7)
     if title:
         fig.suptitle(title)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    return path
+    return _save(fig, path)
 
 
 def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
@@ -310,10 +309,7 @@ def plot_convergence(study: dict, quantities, path: str | Path) -> Path:
                    ncols=min(len(legend), 6), fontsize=8, title_fontsize=7,
                    title="measured: " + "; ".join(sources) if sources else None)
     fig.suptitle(f"{study['case']}: grid and time-step convergence")
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    return path
+    return _save(fig, path, dpi=100)
 
 
 def _convergence_panel(ax, dof, entry, key, label, unit, variant=None) -> str | None:
