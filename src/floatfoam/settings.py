@@ -113,8 +113,9 @@ class RunSettings:
                                              " between the body and the nearest held wall)")
     solver: str | None = spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
     static_body: bool = spec(False, kind=bool, doc="hold the body still (still-water test)")
-    # a turn that shears the distances' zone past what its cells take (the 3D ellipsoid gave
-    # out 53° after its release; docs/morphing.md) meets a new mesh first
+    # a turn that shears the distances' zone past what its cells take (on the morphing mesh
+    # alone the 3D ellipsoid gives out 53° after its release; docs/morphing.md) meets a new
+    # mesh first
     remesh_angle: float = spec(30.0, minimum=0.0, closed=True, maximum=180.0, added=True,
                                 doc="deg: the body's turn from the attitude its mesh was made "
                                 "at after which the run meshes the domain anew at the body's "
