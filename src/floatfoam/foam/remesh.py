@@ -3,7 +3,8 @@ mesh was made at (``[run] remesh_angle``), the fields mapped onto it.
 
 The six-DoF distances' morphing mesh shears the zone between the distances by the body's whole
 turn since the mesh was made: a body that turns over cannot be followed by it (docs/morphing.md:
-the ellipsoid of ``ellipsoid_printed_verdict`` gives out at 58°). Remeshing k (1, 2, …):
+on the morphing mesh alone, the ellipsoid of ``ellipsoid_printed_verdict`` gives out at 58°).
+Remeshing k (1, 2, …):
 
 - **stop**: while the solver runs, a step whose attitude is ``remesh_angle`` from the mesh's
   (:class:`Trigger`) asks it to write its current time t_k and stop
@@ -21,11 +22,10 @@ the ellipsoid of ``ellipsoid_printed_verdict`` gives out at 58°). Remeshing k (
 - [decomposePar], then the solver resumes from t_k.
 
 Each stage is marked done in ``.floatfoam/`` (``remesh<k>.<stage>``, the whole remeshing
-``remesh<k>``), so an interrupted
-remeshing resumes where it stopped. The mesh follows the body by the six-DoF distances only
-(the Laplacian's body state lives in its point field), on a gmsh mesh of a section, a half or a
-whole 3D tank (a wedge and the O-grid hold an upright body), whose body has not turned about the
-vertical (a pose has heel and trim).
+``remesh<k>``), so an interrupted remeshing resumes where it stopped. The mesh follows the body
+by the six-DoF distances only (the Laplacian's body state lives in its point field), on a gmsh
+mesh of a section, a half or a whole 3D tank (a wedge and the O-grid hold an upright body),
+whose body has not turned about the vertical (a pose has heel and trim).
 """
 
 from __future__ import annotations
