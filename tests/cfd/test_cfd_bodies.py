@@ -244,7 +244,7 @@ def test_capsizing_ellipse_turns_over_to_its_stable_attitude(tmp_path):
     after = roll[peak:]
     assert after.min() < stable < roll[peak]  # and swings back about it (53.7° by 1.6 s)
     assert after.min() > 20.0  # never back to upright
-    # the mesh made anew on the way, each 30° of turn (measured: at 34.5° and 65.6°), and the
+    # the mesh made anew on the way, each 30° of turn (measured: at 34.5° and 67.8°), and the
     # pictures read each time on its own mesh: the body patch upright at 0.5 s (taller than
     # wide: the ellipse stands on its major axis, 0.30 × 0.20 m) and lying over at the peak
     from floatfoam.analysis.flowview import open_run
