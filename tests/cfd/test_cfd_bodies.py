@@ -313,7 +313,7 @@ def test_triaxial_ellipsoid_pitch_3d(tmp_path):
     assert np.mean(motion["z"]) == pytest.approx(info.z_G_equilibrium, abs=0.01 * theory.draft)
 
 
-@pytest.mark.extended  # make test-extended: 10.4 min on 2 ranks, past make test's budget
+@pytest.mark.extended  # make test-extended: ~11 min on 2 ranks, past make test's budget
 def test_the_ellipsoid_the_print_calls_stable_turns_over_in_the_fluid(tmp_path):
     """ellipsoid_printed_verdict: the oblate ellipsoid with G high, which the memoir's printed
     criterion says oscillates and the exact theory says capsizes (its GZ curve negative from 0°
@@ -323,7 +323,7 @@ def test_the_ellipsoid_the_print_calls_stable_turns_over_in_the_fluid(tmp_path):
     model's to 180° (measured: 2.0 % at 10°, 6.6 % at 90°, 5.8 % at 180°: the fluid's added
     inertia, which the model leaves out, slows it), and swings back from a peak beyond 200°
     (measured 247° at 0.787 s, the model's 245° at 0.725 s)."""
-    record = 0.8  # past the peak beyond 180° (0.787 s)
+    record = 0.85  # past the peak beyond 180° (0.787 s), by 10° of the swing back
     case, theory, motion, info = cfd("ellipsoid_printed_verdict", tmp_path,
                                      [f"run.end_time={record}"])
     assert info.mesh == "3d-half" and theory.dofs["roll"].verdict == "capsizes"
