@@ -181,9 +181,11 @@ def write(mesh: RunMesh, run_dir: Path) -> None:
         shutil.copyfile(required(mesh.msh, "the gmsh mesh"), run_dir / "domain.msh")
 
 
-def make_polymesh(mesh: RunMesh, run_dir: Path) -> dict | None:
+def make_polymesh(mesh: RunMesh, run_dir: Path, remade: str | None = None) -> dict | None:
     """constant/polyMesh from the mesh's source (blockMesh, or gmshToFoam + the patch types +
-    checkMesh); returns checkMesh's numbers for a gmsh mesh. Each application runs once."""
+    checkMesh); returns checkMesh's numbers for a gmsh mesh. Each application runs once; a mesh
+    ``remade`` on the way (:mod:`floatfoam.foam.remesh`: its tag, ``remesh<k>``) is converted
+    from ``<tag>.msh``, its logs ``log.<tag>.<application>``, each time it is asked for."""
     from floatfoam.foam import runner
 
     if mesh.kind == "ogrid":
@@ -192,11 +194,15 @@ def make_polymesh(mesh: RunMesh, run_dir: Path) -> dict | None:
     from floatfoam.foam.meshcheck import parse_check_mesh, set_patch_types
     from floatfoam.layout import mark_done, step_done
 
-    runner.run_app(run_dir, "gmshToFoam", ["gmshToFoam", "domain.msh"])
-    if not step_done(run_dir, "patchTypes"):
+    prefix, source, once = (f"{remade}.", f"{remade}.msh", False) if remade else \
+        ("", "domain.msh", True)
+    runner.run_app(run_dir, f"{prefix}gmshToFoam", ["gmshToFoam", source], marker=once)
+    if not (once and step_done(run_dir, "patchTypes")):
         set_patch_types(run_dir)
-        mark_done(run_dir, "patchTypes")
-    log = runner.run_app(run_dir, "checkMesh", ["checkMesh"], check=False)
+        if once:
+            mark_done(run_dir, "patchTypes")
+    log = runner.run_app(run_dir, f"{prefix}checkMesh", ["checkMesh"], marker=once,
+                         check=False)
     check = parse_check_mesh(Path(log).read_text()) if log and Path(log).exists() else None
     if check and (check["negative_volume_cells"] or check["inverted_pyramid_faces"]):
         layers = "" if mesh.kind in ("2d", "wedge") else (

@@ -80,9 +80,19 @@ def continue_to(run_dir: Path, end_time: float, interval: float) -> float:
     for step in (layout.FINISHED, RECONSTRUCT):
         layout.marker(run_dir, step).unlink(missing_ok=True)
     restart = latest_time(run_dir) or 0.0
-    left = end_time - restart
     control = FoamFile(run_dir / "system" / "controlDict")
     control["endTime"] = end_time
-    control["writeInterval"] = write_interval(left, min(interval, left))
+    writes_from(control, restart, interval)
     write_record(run_dir, replace(read_record(run_dir), end_time=end_time))
     return restart
+
+
+def writes_from(control, restart: float, interval: float) -> None:
+    """controlDict's (``control``, a FoamFile) writeInterval: the largest ≤ ``interval``
+    (run.write_interval) that divides the time from ``restart`` to its endTime. OpenFOAM counts
+    write times from the time it restarts from, and its adjustable step lands on write times
+    only: the run's last write and step fall on its end time (a continued run's, a remeshed
+    run's)."""
+    left = float(control["endTime"]) - restart
+    if left > 0.0:
+        control["writeInterval"] = write_interval(left, min(interval, left))

@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam import layout
-from floatfoam.foam import domain, runner
+from floatfoam.foam import domain, extension, runner
 from floatfoam.tank import Pose
 
 ARCHIVE = layout.REMESHED  # remeshed/<k>: the run on its k-th mesh, up to its remeshing
@@ -176,6 +176,8 @@ def pose_of(case, mesh, state: dict) -> Pose:
 def remesh(plan, mesh, run_dir: Path, hostfile: Path | None, label: str) -> None:
     """Remeshing k = :func:`done` + 1 of the run in ``run_dir`` at its latest written time (see
     the module docstring); each stage once."""
+    from foamlib import FoamFile
+
     from floatfoam.foam.timedirs import latest_time
 
     case, np_ = plan.case, plan.np
@@ -204,12 +206,13 @@ def remesh(plan, mesh, run_dir: Path, hostfile: Path | None, label: str) -> None
               f"{math.degrees(where.trim):.1f}° trim", file=sys.stderr)
         made = domain.generate(mesh, case, plan.level, plan.equilibrium, run_dir,
                                local=plan.local, where=where, name=f"{tag}.msh")
-        _polymesh(run_dir, tag, made.kind)
+        domain.make_polymesh(made, run_dir, remade=tag)
         layout.mark_done(run_dir, f"{tag}.mesh")
     if not layout.step_done(run_dir, f"{tag}.map"):
         _map(run_dir, archive, time_name, tag)
         _restart_at(run_dir, state)
-        _writes_from(run_dir, float(time_name), case.settings.run.write_interval)
+        extension.writes_from(FoamFile(run_dir / "system" / "controlDict"), float(time_name),
+                              case.settings.run.write_interval)
         layout.mark_done(run_dir, f"{tag}.map")
     if np_ > 1:
         runner.run_app(run_dir, f"{tag}.decomposePar", ["decomposePar", "-force"])
@@ -251,22 +254,6 @@ def _keep(run_dir: Path, archive: Path, case_name: str) -> None:
     (archive / f"{case_name}.foam").touch()
 
 
-def _polymesh(run_dir: Path, tag: str, kind: str) -> None:
-    """constant/polyMesh from ``<tag>.msh``: gmshToFoam, the patch types, checkMesh (refused
-    as the run's first mesh is, with cells of zero or negative volume)."""
-    from floatfoam.foam.meshcheck import parse_check_mesh, set_patch_types
-
-    runner.run_app(run_dir, f"{tag}.gmshToFoam", ["gmshToFoam", f"{tag}.msh"], marker=False)
-    set_patch_types(run_dir)
-    log = runner.run_app(run_dir, f"{tag}.checkMesh", ["checkMesh"], marker=False,
-                         check=False)
-    check = parse_check_mesh(Path(log).read_text())
-    if check["negative_volume_cells"] or check["inverted_pyramid_faces"]:
-        raise runner.RunError(f"checkMesh of the {kind} mesh made anew: "
-                              f"{check['negative_volume_cells']} cells of zero or negative "
-                              f"volume (see {log})")
-
-
 def _map(run_dir: Path, archive: Path, time_name: str, tag: str) -> None:
     """The time folder ``time_name`` on the new mesh: 0.orig's fields, their values mapped from
     the archived run there (mapFieldsPar maps the cell fields; the point displacement, which it
@@ -282,22 +269,6 @@ def _map(run_dir: Path, archive: Path, time_name: str, tag: str) -> None:
         shutil.copyfile(run_dir / "0.orig" / unmapped.stem, target / unmapped.stem)
         unmapped.unlink()
     shutil.copytree(archive / time_name / "uniform", target / "uniform", dirs_exist_ok=True)
-
-
-def _writes_from(run_dir: Path, restart: float, interval: float) -> None:
-    """controlDict's writeInterval: the largest ≤ ``interval`` (run.write_interval) that
-    divides the time from ``restart`` to the run's end time. OpenFOAM counts write times from
-    the time it restarts from, and its adjustable step lands on write times only: the run's
-    last write and step fall on its end time (as a continued run's,
-    :mod:`floatfoam.foam.extension`)."""
-    from foamlib import FoamFile
-
-    from floatfoam.foam.render import write_interval
-
-    control = FoamFile(run_dir / "system" / "controlDict")
-    left = float(control["endTime"]) - restart
-    if left > 0.0:
-        control["writeInterval"] = write_interval(left, min(interval, left))
 
 
 def _restart_at(run_dir: Path, state: dict) -> None:
