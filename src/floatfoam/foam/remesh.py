@@ -259,9 +259,18 @@ def _map(run_dir: Path, archive: Path, time_name: str, tag: str) -> None:
     the archived run there (mapFieldsPar maps the cell fields; the point displacement, which it
     sets aside as ``.unmapped``, is 0.orig's: the new mesh is undeformed), and its uniform/
     (time, six-DoF state) copied."""
+    from foamlib import FoamFile
+
     target = run_dir / time_name
     shutil.rmtree(target, ignore_errors=True)
     shutil.copytree(run_dir / "0.orig", target)
+    # the solver names a time with more digits than timePrecision when fewer would repeat the
+    # last step's name (measured: 1.06128378 at timePrecision 8); mapFieldsPar would then write
+    # into 1.0612838, and the run restart from two folders of one time
+    control = FoamFile(run_dir / "system" / "controlDict")
+    digits = len(time_name.replace(".", "").lstrip("0"))
+    if digits > int(control["timePrecision"]):
+        control["timePrecision"] = digits
     runner.run_app(run_dir, f"{tag}.mapFieldsPar",
                    ["mapFieldsPar", str(archive.resolve()), "-consistent", "-sourceTime",
                     time_name, "-mapMethod", MAP_METHOD], marker=False)
