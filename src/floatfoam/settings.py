@@ -89,6 +89,9 @@ class RunSettings:
     acceleration_relaxation: float = spec(1.0, minimum=0.0, maximum=1.0,
                                            doc="r: each body acceleration = r·new + "
                                            "(1 − r)·previous, in every coupling iteration")
+    outer_correctors: int = spec(3, kind=int, minimum=1, closed=True, maximum=20,
+                                 doc="body–fluid coupling iterations per time step (PIMPLE's "
+                                 "nOuterCorrectors)")
     mesh_motion: str = spec("auto", kind=str, doc="how the mesh follows the body: "
                              "laplacian (displacementLaplacian, its diffusivity "
                              "run.motion_diffusivity: no distance to set), "
@@ -171,6 +174,13 @@ class GmshSettings:
     body_cells_3d: float = spec(12, minimum=0.0, maximum=500, doc="the same in 3D")
     curvature_cells: float = spec(48, minimum=0.0, maximum=5000,
                                    doc="cells per 2π of the surface's turning, where it turns fast")
+    # 4: no case here is refined more (the hyperbola's vertex 3.9, box_bilge 2.1); a small
+    # bilge radius's cells set the step (docs/studies/section-cost.md: 2 took a flat barge's
+    # record from 7.7 to 5.3 min and moved its ζ by +9 %, its T_d by +0.3 %)
+    curvature_refinement: float = spec(4.0, minimum=1.0, closed=True, maximum=100.0,
+                                       doc="the most the curvature refines the body's cells "
+                                       "(2D, wedge): none smaller than the body's cell size / "
+                                       "this")
     # 1.2: the elliptic section's coarse 2D mesh has 11.0k cells (17.5k at 1.1), and an
     # interFoam step costs ~11 µs per cell on 2 ranks here: 5 roll periods in ~2 min
     growth: float = spec(1.2, minimum=1.0, maximum=3.0,

@@ -93,6 +93,26 @@ def test_conic_section_is_exact(cases):
         < 1e-12
 
 
+@pytest.mark.parametrize("refinement", [2.0, 100.0])
+def test_the_curvature_refines_a_small_bilge_no_more_than_it_is_allowed(refinement):
+    """A flat box (0.4 × 0.12 m) with bilges of 10 mm: 48 cells per 2π of a 10 mm radius are
+    1.31 mm, a quarter of the body's 5 mm cells. mesh.gmsh.curvature_refinement R keeps every
+    edge ≥ 5 mm / R (2.5 mm at R = 2; at R = 100 the curvature's own 1.31 mm), less the
+    rounding of a quarter-circle arc (15.7 mm) into whole edges: 7 of 2.24 mm at R = 2, 0.90
+    of the 2.5 mm asked."""
+    case = with_overrides(load_case(CASES_DIR / "box_bilge"), [
+        "body.beam=0.4", "body.height=0.12", "body.bilge_radius=0.01",
+        f"mesh.gmsh.curvature_refinement={refinement}"])
+    spec = levels.mesh_spec(case, "coarse")
+    assert spec.body_size == pytest.approx(0.005) and spec.curvature_size == pytest.approx(
+        0.005 / refinement)
+    smallest = max(2 * math.pi * 0.01 / 48, spec.curvature_size)
+    edges = np.linalg.norm(np.diff(body_surface.section_polygon(case.body, spec), axis=0),
+                           axis=1)
+    assert 0.85 * smallest <= edges.min() <= 1.01 * smallest
+    assert edges.max() <= spec.body_size * 1.001
+
+
 def test_progression_fills_its_length():
     n, q = progression(2.9, 0.00635, 1.1)
     assert 1.0 < q <= 1.1

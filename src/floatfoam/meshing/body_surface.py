@@ -25,10 +25,11 @@ from floatfoam.tank import Pose
 SECTION_ASPECT = 4.0  # axial spacing of a section's prism ≤ 4 h: a closed, light STL
 
 
-def size_options(gmsh, size: float, curvature_points: float) -> None:
-    """Surface cell size ``size`` everywhere, smaller where the curvature asks for it."""
+def size_options(gmsh, size: float, curvature_points: float, smallest: float = 0.0) -> None:
+    """Surface cell size ``size`` everywhere, smaller where the curvature asks for it, down to
+    ``smallest``."""
     gmsh.option.setNumber("Mesh.MeshSizeMax", size)
-    gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", smallest)
     gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", round(curvature_points))
     gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
     gmsh.option.setNumber("Mesh.Algorithm", 6)  # Frontal-Delaunay: regular triangles
@@ -40,7 +41,7 @@ def section_polygon(body, spec: MeshSpec) -> np.ndarray:
     with gmshio.session("section") as gmsh:
         curves = sections.add_section(body, 0.0)
         gmsh.model.occ.synchronize()
-        size_options(gmsh, spec.body_size, spec.curvature_points)
+        size_options(gmsh, spec.body_size, spec.curvature_points, spec.curvature_size)
         gmsh.model.mesh.generate(1)
         polygon = gmshio.curve_chain(curves)[:, 1:]
     return _counter_clockwise(polygon)
@@ -52,7 +53,7 @@ def meridian_polyline(body, spec: MeshSpec) -> np.ndarray:
     with gmshio.session("meridian") as gmsh:
         curves = sections.add_meridian(body)
         gmsh.model.occ.synchronize()
-        size_options(gmsh, spec.body_size, spec.curvature_points)
+        size_options(gmsh, spec.body_size, spec.curvature_points, spec.curvature_size)
         gmsh.model.mesh.generate(1)
         chain = gmshio.curve_chain(curves)[:, [0, 2]]
     chain[np.abs(chain[:, 0]) < 1e-12 * spec.span, 0] = 0.0  # ends exactly on the axis
@@ -75,7 +76,8 @@ def body_triangles(body, spec: MeshSpec) -> tuple[np.ndarray, np.ndarray]:
         else:
             volume = sections.add_solid(body)
         gmsh.model.occ.synchronize()
-        size_options(gmsh, spec.body_size, spec.curvature_points)
+        size_options(gmsh, spec.body_size, spec.curvature_points,
+                     spec.curvature_size if body.is_section else 0.0)
         gmsh.model.mesh.generate(2)
         boundary = gmsh.model.getBoundary([(3, volume)], oriented=False)
         vertices, faces = gmshio.surface_triangles([tag for _, tag in boundary])

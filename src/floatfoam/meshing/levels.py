@@ -41,6 +41,8 @@ class MeshSpec:
     body_size : surface cell size on the body, D / (body_cells r^index)
     body_size_3d : same for 3D volume meshes
     curvature_points : cells per 2π of turning, curvature_cells r^index
+    curvature_size : the smallest surface cell the curvature makes (2D, wedge),
+        body_size / curvature_refinement
     growth, growth_3d : grading away from the body (coarse values; see the module docstring)
     layers_3d, layers_height_3d : prism layers at the body in 3D (a body given by triangles,
         or an ellipsoid): their count (0: none) and total height (m)
@@ -55,6 +57,7 @@ class MeshSpec:
     body_size: float
     body_size_3d: float
     curvature_points: float
+    curvature_size: float
     growth: float
     growth_3d: float
     margin: float
@@ -80,6 +83,7 @@ def mesh_spec(case: Case, level: str) -> MeshSpec:
         body_size=length / (cfg.body_cells * scale),
         body_size_3d=length / (cfg.body_cells_3d * scale),
         curvature_points=cfg.curvature_cells * scale,
+        curvature_size=length / (cfg.body_cells * scale) / cfg.curvature_refinement,
         growth=cfg.growth, growth_3d=cfg.growth_3d, margin=cfg.margin * length,
         layers_3d=cfg.layers_3d,
         layers_height_3d=cfg.layers_height_3d * length / (cfg.body_cells_3d * scale))
