@@ -78,12 +78,13 @@ def mesh_spec(case: Case, level: str) -> MeshSpec:
     extents = body_extents(case.body)
     length, span = float(extents.min()), float(extents.max())
     scale = ratio**index
+    body_size = length / (cfg.body_cells * scale)
     return MeshSpec(
         level=level, index=index, ratio=ratio, length=length, span=span,
-        body_size=length / (cfg.body_cells * scale),
+        body_size=body_size,
         body_size_3d=length / (cfg.body_cells_3d * scale),
         curvature_points=cfg.curvature_cells * scale,
-        curvature_size=length / (cfg.body_cells * scale) / cfg.curvature_refinement,
+        curvature_size=body_size / cfg.curvature_refinement,
         growth=cfg.growth, growth_3d=cfg.growth_3d, margin=cfg.margin * length,
         layers_3d=cfg.layers_3d,
         layers_height_3d=cfg.layers_height_3d * length / (cfg.body_cells_3d * scale))
