@@ -247,6 +247,19 @@ def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
     assert pcorr["solver"] == solver and pcorr["tolerance"] == 1e-3 and pcorr["relTol"] == 0
 
 
+def test_laplacian_takes_the_distance_from_the_body_once():
+    """The Laplacian's diffusivity (inverseDistance, v1912's wallDist under the name "patch")
+    reads fvSchemes' patchDist: updateInterval 0 takes the distance when the solver starts and
+    never again (wallDist::movePoints), not after each of a step's mesh motions."""
+    from foamlib import FoamFile
+
+    from floatfoam.layout import COMMON_DIR
+
+    schemes = FoamFile(COMMON_DIR / "system" / "fvSchemes")
+    assert schemes["patchDist"]["method"] == "meshWave"
+    assert schemes["patchDist"]["updateInterval"] == 0
+
+
 @pytest.mark.parametrize("overrides, outer", [([], 3), (["run.outer_correctors=2"], 2),
                                               (["run.static_body=true"], 1)])
 def test_outer_correctors_reach_fvsolution(tmp_path, overrides, outer):
