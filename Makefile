@@ -82,9 +82,9 @@ docs: setup  ## the documentation site (MkDocs Material, warnings are errors) in
 validate: setup  ## grid + time-step convergence (GCI) of CASE: coarse, medium, fine, medium with dt/2, coarse with its mesh motion spread (TIME_LEVEL=fine: fine with dt/2; MORPHING=F: the distances × F, default 1.5, or the Laplacian's 1/d; MORPHING=no: not run)
 	$(FF) validate $(CASE) $(NPARGS) --time-level $(TIME_LEVEL) $(if $(filter no,$(MORPHING)),--no-morphing,$(if $(MORPHING),--morphing $(MORPHING))) $(SETARGS)
 
-bench-cfd: setup  ## every CFD case, 1 s simulated (FULL=1: whole records): cells, steps, wall, 1 vs 2 ranks
-	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks 1 2 --cases $(or $(CASES),$(CFD_CASES)) \
-		$(if $(FULL),--full)
+bench-cfd: setup  ## every CFD case, 1 s simulated (FULL=1: whole records; BASELINE=REV: that revision's run beside each): wall, steps, T_d, ζ, errors
+	$(PY) scripts/bench_cfd.py --levels $(LEVEL) --ranks $(or $(RANKS),1 2) \
+		--cases $(or $(CASES),$(CFD_CASES)) $(if $(FULL),--full) $(if $(BASELINE),--baseline $(BASELINE))
 
 bench-sharing: setup  ## two runs at once on the cores against one alone (CASE, default cylinder_heave; 1 and 2 ranks)
 	$(PY) scripts/bench_sharing.py --case $(or $(CASE),cylinder_heave) --ranks 1 2
