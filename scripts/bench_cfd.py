@@ -196,7 +196,7 @@ def _baseline_line(r: dict) -> str:
     b = r["baseline"]
     return (f"{r['case']:<26} {r['ranks']:>5} {b['wall_s']:>9.1f} {r['wall_s']:>9.1f} "
             f"{r['wall_s'] / b['wall_s']:>6.2f} {_num(b['period'], 4):>9} "
-            f"{_num(r['period'], 4):>9} {_num(b['damping_ratio'], 4):>8} "
+            f"{_num(r['period'], 4):>9} {_num(b['damping_ratio'], 5):>8} "
             f"{_num(r['damping_ratio'], 5):>8} {b['steps']:>10} {r['steps']:>6}")
 
 
