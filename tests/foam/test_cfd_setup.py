@@ -247,6 +247,25 @@ def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
     assert pcorr["solver"] == solver and pcorr["tolerance"] == 1e-3 and pcorr["relTol"] == 0
 
 
+@pytest.mark.parametrize("name, correctors", [("elliptic_cylinder", 1), ("cylinder_heave", 1),
+                                              ("sphere", 2), ("ellipsoid_roll", 2),
+                                              ("superellipsoid_buoy", 2)])
+def test_alpha_correctors_follow_the_mesh(tmp_path, name, correctors):
+    """One MULES corrector on the 2D sections, the shared fvSolution's two on the wedges and
+    in 3D (render.ALPHA_ONE_CORRECTOR)."""
+    import shutil
+
+    from foamlib import FoamFile
+
+    from floatfoam.layout import COMMON_DIR
+
+    shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
+    case, _, mesh = planned(name)
+    render._solution(case, tmp_path, mesh)
+    alpha = FoamFile(tmp_path / "system" / "fvSolution")["solvers"]['"alpha.water.*"']
+    assert alpha["nAlphaCorr"] == correctors and alpha["nLimiterIter"] == 5
+
+
 def test_laplacian_takes_the_distance_from_the_body_once():
     """The Laplacian's diffusivity (inverseDistance, v1912's wallDist under the name "patch")
     reads fvSchemes' patchDist: updateInterval 0 takes the distance when the solver starts and

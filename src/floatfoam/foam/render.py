@@ -131,6 +131,14 @@ def equilibrium_shift(case: Case, level: str, kind: str, equilibrium) -> float |
 PCORR_BY_GAMG = ("2d", "3d", "3d-half", "ogrid")
 PCORR_GAMG = {"solver": "GAMG", "smoother": "DIC"}
 
+# the meshes whose α takes one MULES corrector a step instead of the shared fvSolution's two:
+# the 2D sections, where one costs 12 % less a step and moved flume_section_roll's T_d by
+# 0.002 % and ζ by 0.6 %, cylinder_heave's O-grid T_d by 0.06 % and ζ by 0.2 %. Not the
+# tetrahedral 3D tanks: with one, stl_pontoon's roll stops decaying below 2° (its extrema
+# +1.78°, −1.43°, +1.29°, −1.48° from 2.4 s, against +1.54° at 2.37 s with two); nor the wedges,
+# not measured (docs/studies/section-cost.md)
+ALPHA_ONE_CORRECTOR = ("2d", "ogrid")
+
 
 def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
     control = FoamFile(run_dir / "system" / "controlDict")
@@ -148,13 +156,16 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
 
 
 def _solution(case: Case, run_dir: Path, mesh: RunMesh) -> None:
-    """pcorr's solver for the mesh's kind (:data:`PCORR_BY_GAMG`); the time scheme
+    """pcorr's solver and α's correctors for the mesh's kind (:data:`PCORR_BY_GAMG`,
+    :data:`ALPHA_ONE_CORRECTOR`); the time scheme
     (``run.time_scheme``: the shared fvSchemes' Euler unless the case names Crank–Nicolson)."""
+    solvers = FoamFile(run_dir / "system" / "fvSolution")["solvers"]
     if mesh.kind in PCORR_BY_GAMG:
-        solvers = FoamFile(run_dir / "system" / "fvSolution")["solvers"]
         shared = solvers['"pcorr.*"']
         solvers['"pcorr.*"'] = {**PCORR_GAMG, "tolerance": shared["tolerance"],
                                 "relTol": shared["relTol"]}
+    if mesh.kind in ALPHA_ONE_CORRECTOR:
+        solvers['"alpha.water.*"']["nAlphaCorr"] = 1
     psi = time_scheme_coefficient(case.settings.run.time_scheme)
     if psi is not None:
         FoamFile(run_dir / "system" / "fvSchemes")["ddtSchemes"]["default"] = ("CrankNicolson",
