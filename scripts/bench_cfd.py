@@ -6,8 +6,8 @@ its end time × the wall time per simulated second): cells, mesh kind, time step
 (render, mesh and solver included) and wall time per simulated second. Prints a table and
 writes build/bench/cfd.json. Each run goes to build/bench/ and is moved aside when rerun.
 
-Accuracy per second: each run's record is analysed in its released DoF (T_d and ζ of the whole
-record, HEAD's analysis for every run), and its T_d set against the case's converged value (the
+Accuracy per second: each run's record is analysed in its released DoF (T_d and ζ of what it
+ran, HEAD's analysis for every run), and its T_d set against the case's converged value (the
 grid study's Richardson extrapolation, from ``floatfoam validate``'s study of today's settings
 when one is in the build) and its measured one (the case's [reference]). With ``--baseline
 REV`` each case is also run, just before, by the code and cases of git revision REV (the
