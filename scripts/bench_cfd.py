@@ -106,7 +106,7 @@ def steps_of(run: Path) -> int:
 
 
 def accuracy(case, run: Path) -> dict:
-    """T_d and ζ of a run's whole record in the case's released DoF, and T_d's relative error
+    """T_d and ζ of a run's record in the case's released DoF, and T_d's relative error
     against the case's converged value (``converged_period``: the grid study's extrapolation, or
     None without a study of today's settings) and its measured one (``reference_period``)."""
     dof = excited_dofs(case)[0]

@@ -127,7 +127,7 @@ def equilibrium_shift(case: Case, level: str, kind: str, equilibrium) -> float |
 # the solver's wall (docs/studies/section-cost.md): stl_pontoon's half tank 0.06 s 21.3 → 19.9 s,
 # cylinder_heave's O-grid 0.5 s 11.3 → 10.9 s, ellipsoid_roll's half tank 0.08 s 12.15 s both,
 # the sphere's wedge 0.5 s 6.6 → 6.7 s; the motion the same within 1e-8 of its swing. At 1e-6 GAMG
-# was the faster on gmsh's sections and whole tanks only (box_bilge 0.8 s 16 → 13 s).
+# is the faster on gmsh's sections and whole tanks only (box_bilge 0.8 s 16 → 13 s).
 PCORR_BY_GAMG = ("2d", "3d", "3d-half", "ogrid")
 PCORR_GAMG = {"solver": "GAMG", "smoother": "DIC"}
 
