@@ -23,6 +23,7 @@ import argparse
 import json
 import os
 import platform
+import shutil
 import subprocess
 import sys
 import time
@@ -137,7 +138,7 @@ def baseline_tree(rev: str) -> Path:
     tree = build_dir() / "bench" / "baseline" / found.stdout.strip()
     if not (tree / ".complete").is_file():  # marked when whole: a copy cut short starts again
         part = tree.with_name(tree.name + ".part")
-        subprocess.run(["rm", "-rf", str(part)], check=True)
+        shutil.rmtree(part, ignore_errors=True)
         part.mkdir(parents=True)
         archive = subprocess.Popen(["git", "archive", "--format=tar", found.stdout.strip()],
                                    cwd=ROOT, stdout=subprocess.PIPE)
@@ -147,7 +148,7 @@ def baseline_tree(rev: str) -> Path:
         (part / "build").mkdir(exist_ok=True)
         (part / "build" / "solver").symlink_to(PROJECT_BUILD / "solver")
         (part / ".complete").touch()
-        subprocess.run(["rm", "-rf", str(tree)], check=True)
+        shutil.rmtree(tree, ignore_errors=True)
         part.rename(tree)
     return tree
 

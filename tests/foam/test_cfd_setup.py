@@ -227,15 +227,9 @@ def test_a_section_centre_of_mass_is_mid_slab(tmp_path, name):
     assert coeffs["centreOfMass"][0] == pytest.approx(mesh.x_mid, abs=1e-12)
 
 
-@pytest.mark.parametrize("name, solver", [("elliptic_cylinder", "GAMG"),
-                                          ("superellipsoid_buoy", "GAMG"),  # heeled and trimmed
-                                          ("cylinder_heave", "GAMG"), ("sphere", "PCG"),
-                                          ("ellipsoid_roll", "GAMG"), ("stl_pontoon", "GAMG")])
-def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
-    """pcorr by GAMG on every mesh but the wedge's, where it measured no slower, by the shared
-    PCG on the wedge (render.PCORR_BY_GAMG); the same tolerance either way."""
-    import shutil
-
+def rendered_solvers(tmp_path, name):
+    """fvSolution's solvers as render._solution leaves them for case ``name`` (the shared
+    system folder copied into ``tmp_path``)."""
     from foamlib import FoamFile
 
     from floatfoam.layout import COMMON_DIR
@@ -243,7 +237,17 @@ def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
     shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
     case, _, mesh = planned(name)
     render._solution(case, tmp_path, mesh)
-    pcorr = FoamFile(tmp_path / "system" / "fvSolution")["solvers"]['"pcorr.*"']
+    return FoamFile(tmp_path / "system" / "fvSolution")["solvers"]
+
+
+@pytest.mark.parametrize("name, solver", [("elliptic_cylinder", "GAMG"),
+                                          ("superellipsoid_buoy", "GAMG"),  # heeled and trimmed
+                                          ("cylinder_heave", "GAMG"), ("sphere", "PCG"),
+                                          ("ellipsoid_roll", "GAMG"), ("stl_pontoon", "GAMG")])
+def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
+    """pcorr by GAMG on every mesh but the wedge's, where it measured no slower, by the shared
+    PCG on the wedge (render.PCORR_BY_GAMG); the same tolerance either way."""
+    pcorr = rendered_solvers(tmp_path, name)['"pcorr.*"']
     assert pcorr["solver"] == solver and pcorr["tolerance"] == 1e-3 and pcorr["relTol"] == 0
 
 
@@ -253,16 +257,7 @@ def test_pcorr_solver_follows_the_mesh(tmp_path, name, solver):
 def test_alpha_correctors_follow_the_mesh(tmp_path, name, correctors):
     """One MULES corrector on the 2D sections, the shared fvSolution's two on the wedges and
     in 3D (render.ALPHA_ONE_CORRECTOR)."""
-    import shutil
-
-    from foamlib import FoamFile
-
-    from floatfoam.layout import COMMON_DIR
-
-    shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
-    case, _, mesh = planned(name)
-    render._solution(case, tmp_path, mesh)
-    alpha = FoamFile(tmp_path / "system" / "fvSolution")["solvers"]['"alpha.water.*"']
+    alpha = rendered_solvers(tmp_path, name)['"alpha.water.*"']
     assert alpha["nAlphaCorr"] == correctors and alpha["nLimiterIter"] == 5
 
 
