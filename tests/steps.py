@@ -14,10 +14,10 @@ tests/cfd/test_cfd.py): the step and the measured changes it makes, in one place
 # +0.04 %; the roll T_d: box +0.01 %, ellipse −0.07 %, hyperbola −0.21 %), the settled level by
 # ≤ 0.05 mm; ζ, not checked there, by −2 to +13 %.
 #
-# On make test's heave records of the O-grid cylinder (1.6 s) and the spheres' wedges (1.7 s),
-# 2 ranks, relaxation 0.7 (the case's own step → this one): cylinder_heave 349 → 193 steps, 49.7 →
-# 26.2 s of run, T_d 0.6146 → 0.6189 s (Cummins 0.6224 s: −1.26 → −0.56 %), fitted level
-# −0.29 → −0.30 mm, ζ 0.141 → 0.155; sphere (10 mm) 356 → 192 steps, 30.9 → 16.4 s, T_d
+# On make test's heave record of the O-grid cylinder (1.6 s), 2 ranks, the Laplacian (the case's
+# own step → this one): cylinder_heave 338 → 187 steps, T_d 0.6244 → 0.6270 s (Cummins 0.6224 s:
+# +0.32 → +0.74 %), fitted level −0.38 mm both, ζ 0.164 → 0.173. On the spheres' wedges
+# (1.7 s), 2 ranks, relaxation 0.7: sphere (10 mm) 356 → 192 steps, 30.9 → 16.4 s, T_d
 # +0.13 % of Cummins' both, level −0.26 mm both; sphere_25mm 358 → 194 steps, 26.0 → 18.6 s,
 # T_d +0.03 → +0.02 %, level −0.42 → −0.44 mm; sphere_50mm 420 → 230 steps, T_d −1.52 →
 # −1.31 %, but its fitted level −0.79 → −1.08 mm, past the 1 % of the draft (1 mm) its test

@@ -288,12 +288,13 @@ def test_an_ogrid_release_out_of_its_tank_names_the_release(capsys, build, monke
 
 def test_an_ogrid_square_that_no_longer_fits_gives_the_release_range(capsys, build,
                                                                      tmp_path):
-    """0.3 m up, the cylinder is inside the tank but its 0.15 m square was left 2e-17 m below
-    the top: blockMesh stopped on inward-pointing faces (exit 1, the run folder written)."""
+    """0.3 m up, the cylinder is inside the tank but its 0.1 m square leaves the 16 cells above
+    it less than the square's 7.1 mm each (0.025 m for 0.114 m): blockMesh would shrink them to
+    nothing and stop on inward-pointing faces (exit 1, the run folder written)."""
     solver = tmp_path / "interFoam"
     solver.write_text("")
     line = refused(capsys, ["run", "cylinder_heave", "--set", "release.heave=0.3", "--set",
                             f'run.solver="{solver}"'])
-    assert "mesh.square_half_size = 0.15 m: valid is 0.0762 < square_half_size ≤ 0.08333 m" \
-        in line and line.endswith("release.heave from -0.8442 to 0.18 m fits this square")
+    assert "mesh.square_half_size = 0.1 m: valid is 0.0762 < square_half_size ≤ 0.07 m" \
+        in line and line.endswith("release.heave from -0.9049 to 0.2357 m fits this square")
     assert not build.exists()

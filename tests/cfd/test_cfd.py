@@ -41,7 +41,7 @@ def swings(t, z, z_eq):
 
 def test_cylinder_heave_coarse_decays_with_added_mass(tmp_path):
     """2.6 heave periods (1.6 s) of the coarse run, on 2 MPI ranks (decomposePar + mpirun), at
-    make test's step (tests/steps.py: 193 steps, not the case's 349)."""
+    make test's step (tests/steps.py: 187 steps, not the case's 338)."""
     case = load_case("cylinder_heave", ["run.end_time=1.6", *FAST_STEP])
     theory = theory_summary(case).to_dict()
     result = run_case(case, "coarse", 2, build_dir=tmp_path)
@@ -52,23 +52,25 @@ def test_cylinder_heave_coarse_decays_with_added_mass(tmp_path):
     # flow adds ~0.5 of the displaced mass, i.e. ~+20 %); the probes measured 0.61-0.62 s.
     assert decay["period_mean"] > theory["memoir"]["heave_period"] > 0.49
     assert decay["period_mean"] > theory["heave_period"] * 1.1
-    # and by as much as potential flow says: within 3 % of Cummins' model with the exact
-    # restoring force (the release is 33 % of the draft), reduced the same way (0.6224 s on
-    # this 1.6 s record) — issue 12's criterion for heave; measured 0.6189 s (−0.56 %; −1.26 %
-    # at the case's step); the coarse whole record at the case's step 0.6124 s (−1.3 % from
-    # Cummins' 0.6205 s there), its grid study U_num 2.6 % (README)
+    # and by as much as potential flow says: Cummins' model with the exact restoring force (the
+    # release is 33 % of the draft), reduced the same way, gives 0.6224 s on this record;
+    # measured 0.6270 s (+0.74 %). On the whole 3.2 s record at the case's step the O-grid's
+    # levels converge to Cummins' period (coarse 0.6222, fine 0.6200 s against 0.6205 s:
+    # README), so 1.5 % — twice what the coarse level and make test's step give here — is
+    # the mesh or the coupling gone wrong, not the level (the O-grid with a 0.15 m square
+    # ran +2.8 % here: docs/studies/cases/cylinder_heave.md). Issue 12 asked for 3 %.
     series = decay_series(case, "cummins", nonlinear_restoring=True, duration=1.6)
     cummins = analyse_decay(series["time"], series["z"]).summary()["period_mean"]
-    assert decay["period_mean"] == pytest.approx(cummins, rel=0.03)
+    assert decay["period_mean"] == pytest.approx(cummins, rel=0.015)
     # The amplitude decays every half cycle (radiated waves + viscosity; no energy source).
     z_eq = result.info.z_G_equilibrium
     amplitudes = swings(t, z, z_eq)
     assert len(amplitudes) >= 4
     assert all(b < a for a, b in zip(amplitudes, amplitudes[1:], strict=False))
     # It returns to the equilibrium draft: the fitted mean level within 1 % of the 76.2 mm
-    # draft (0.76 mm, issue 12's criterion) of the theory's; measured −0.30 mm on this record
-    # (0.40 %; −0.29 mm at the case's step). The sinking body raises the water of the finite
-    # tank by ~0.3 mm, and the probes saw ±0.25 mm.
+    # draft (0.76 mm, issue 12's criterion) of the theory's; measured −0.38 mm on this record
+    # (0.50 %). The sinking body raises the water of the finite tank by ~0.3 mm, and the
+    # probes saw ±0.25 mm.
     assert decay["equilibrium"] == pytest.approx(z_eq, abs=0.01 * theory["draft"])
 
 
