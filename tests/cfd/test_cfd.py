@@ -58,7 +58,7 @@ def test_cylinder_heave_coarse_decays_with_added_mass(tmp_path):
     # levels converge to Cummins' period (coarse 0.6222, fine 0.6200 s against 0.6205 s:
     # README), so 1.5 % — twice what the coarse level and make test's step give here — is
     # the mesh or the coupling gone wrong, not the level (the O-grid with a 0.15 m square
-    # ran +2.8 % here: docs/studies/cases/cylinder_heave.md). Issue 12 asked for 3 %.
+    # ran +2.8 % here: docs/studies/cases/cylinder_heave.md); issue 12's criterion is 3 %.
     series = decay_series(case, "cummins", nonlinear_restoring=True, duration=1.6)
     cummins = analyse_decay(series["time"], series["z"]).summary()["period_mean"]
     assert decay["period_mean"] == pytest.approx(cummins, rel=0.015)
@@ -86,8 +86,10 @@ def test_still_water_stays_at_rest(tmp_path):
     assert np.all(np.isfinite(rows[:, 1]))
     assert rows[:, 1].max() < 1e-3
     # the same from the written fields, by where the water is (what `floatfoam run` prints
-    # for a held body): the waterline lies along the O-grid's horizontal lines, so the
-    # gravity term balances there too (held 25.4 mm higher, 0.1 m/s: README)
+    # for a held body): the waterline lies along a horizontal face of the O-grid (an even count
+    # of cells a side), so the gravity term balances there too (held at the release, 25.4 mm
+    # higher across the ring's tilted rows, the water moves at 0.08 m/s; with an odd count, the
+    # surface along a row's middle, 0.17 m/s: docs/studies/cases/cylinder_heave.md)
     band = tank(case).band
     written = currents(result.run_dir, band)
     assert [round(c.time, 6) for c in written] == pytest.approx([0.1 * k for k in range(1, 11)])
