@@ -7,15 +7,23 @@
 # non-orthogonal cell and water at rest blows up. The loop lives in the solver executable, so
 # recompiling the solver alone (against Debian's libraries) with -fno-tree-vectorize cures it.
 #
+# floatfoam's own motion solver (src/solver/*.C: the layered six-DoF motion, docs/morphing.md)
+# is compiled with the same flags and linked into the same executable, so that every run of
+# floatfoam's interFoam has it without a library to find at run time.
+#
 # Output: build/solver/bin/interFoam. Idempotent: does nothing when the binary is there and
-# was built from the same flags. Needs root for apt (a deb-src entry for Debian bookworm).
+# was built from the same flags and sources (src/solver/); a change to those sources alone
+# recompiles them and links again (seconds). Needs root for apt (a deb-src entry for Debian
+# bookworm).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=build/solver
 BIN=$OUT/bin/interFoam
 FLAGS="-std=c++11 -m64 -DOPENFOAM=1912 -DWM_DP -DWM_LABEL_SIZE=32 -DNoRepository -ftemplate-depth-100 -O3 -fno-tree-vectorize -fPIC -w"
 STAMP=$OUT/bin/.flags
-if [ -x "$BIN" ] && [ "$(cat "$STAMP" 2>/dev/null)" = "$FLAGS" ]; then
+OWN=(src/solver/*.C)
+BUILT="$FLAGS $(cat "${OWN[@]}" | sha256sum | cut -c1-16)"
+if [ -x "$BIN" ] && [ "$(cat "$STAMP" 2>/dev/null)" = "$BUILT" ]; then
   exit 0
 fi
 mkdir -p "$OUT/download" "$OUT/bin"
@@ -65,20 +73,34 @@ includes=""
 for lib in OpenFOAM OSspecific/POSIX finiteVolume meshTools sampling dynamicFvMesh dynamicMesh \
            transportModels/incompressible transportModels/interfaceProperties \
            transportModels/twoPhaseMixture transportModels/immiscibleIncompressibleTwoPhaseMixture \
-           TurbulenceModels/turbulenceModels TurbulenceModels/incompressible; do
+           TurbulenceModels/turbulenceModels TurbulenceModels/incompressible \
+           sixDoFRigidBodyMotion functionObjects/forces fileFormats surfMesh; do
   includes="$includes -I$S/$lib/lnInclude"
 done
 libs="-lfiniteVolume -lfvOptions -lmeshTools -lsampling -ldynamicMesh -ldynamicFvMesh
       -lincompressibleTransportModels -linterfaceProperties
       -limmiscibleIncompressibleTwoPhaseMixture -lturbulenceModels
-      -lincompressibleTurbulenceModels -lwaveModels -lOpenFOAM -ldl -lm"
-app=$(realpath "$SRC/applications/solvers/multiphase/interFoam")
-echo "build_solver: compiling interFoam with -fno-tree-vectorize (about a minute)"
-# shellcheck disable=SC2086  # word splitting of the flag lists is intended
-(cd "$app" && g++ $FLAGS -I. -I../VoF -I"$S/transportModels" $includes -c interFoam.C \
-   -o "$(realpath -m "$OLDPWD/$OUT/interFoam.o")")
+      -lincompressibleTurbulenceModels -lwaveModels -lsixDoFRigidBodyMotion -lforces
+      -lOpenFOAM -ldl -lm"
+OFLAGS=$OUT/.interFoam.o.flags  # the flags interFoam.o was compiled with
+if [ ! -f "$OUT/interFoam.o" ] || [ "$(cat "$OFLAGS" 2>/dev/null)" != "$FLAGS" ]; then
+  app=$(realpath "$SRC/applications/solvers/multiphase/interFoam")
+  echo "build_solver: compiling interFoam with -fno-tree-vectorize (about a minute)"
+  # shellcheck disable=SC2086  # word splitting of the flag lists is intended
+  (cd "$app" && g++ $FLAGS -I. -I../VoF -I"$S/transportModels" $includes -c interFoam.C \
+     -o "$(realpath -m "$OLDPWD/$OUT/interFoam.o.tmp")")
+  mv -f "$OUT/interFoam.o.tmp" "$OUT/interFoam.o" && echo "$FLAGS" > "$OFLAGS"
+fi
+objects=("$OUT/interFoam.o")
+for source in "${OWN[@]}"; do
+  object=$OUT/$(basename "${source%.C}").o
+  echo "build_solver: compiling $source"
+  # shellcheck disable=SC2086
+  g++ $FLAGS $includes -c "$source" -o "$object"
+  objects+=("$object")
+done
 # shellcheck disable=SC2086
-g++ -m64 "$OUT/interFoam.o" -L/lib -Xlinker --add-needed -Xlinker --no-as-needed $libs -o "$BIN.tmp"
+g++ -m64 "${objects[@]}" -L/lib -Xlinker --add-needed -Xlinker --no-as-needed $libs -o "$BIN.tmp"
 mv -f "$BIN.tmp" "$BIN"  # whole or not at all: the driver runs whatever file is there
-echo "$FLAGS" > "$STAMP"
+echo "$BUILT" > "$STAMP"
 echo "build_solver: $BIN"

@@ -46,7 +46,7 @@ def max_cells() -> int:
 
 
 MESH_POSES = ("release", "equilibrium")
-MESH_MOTIONS = ("auto", "laplacian", "distances")
+MESH_MOTIONS = ("auto", "laplacian", "distances", "layered")
 #: run.motion_diffusivity: the Laplacian's diffusivity in the distance d from the body, and
 #: its name in words
 MOTION_DIFFUSIVITIES = {"quadratic": "1/d²", "linear": "1/d"}
@@ -93,12 +93,15 @@ class RunSettings:
                                  doc="body–fluid coupling iterations per time step (PIMPLE's "
                                  "nOuterCorrectors)")
     mesh_motion: str = spec("auto", kind=str, doc="how the mesh follows the body: "
+                             "layered (rows of points that move with the body by their height "
+                             "alone: a body free in heave alone), "
                              "laplacian (displacementLaplacian, its diffusivity "
                              "run.motion_diffusivity: no distance to set), "
                              "distances (the six-DoF solver: rigid within inner_distance, "
                              "fixed beyond outer_distance), or auto: distances where "
                              "inner_distance or outer_distance is set, for a body "
                              "released to turn over or a mesh made at equilibrium, else "
+                             "layered for a heave release, else "
                              "laplacian on a 2D, O-grid or wedge mesh and in 3D where the "
                              "distances' zone is thinner than twice the body's smallest "
                              "dimension, distances in 3D otherwise (docs/morphing.md)")
@@ -107,6 +110,9 @@ class RunSettings:
                                     "the body: quadratic (1/d²) or linear (1/d, which spreads "
                                     "the deformation further from the body); the distances "
                                     "ignore it")
+    layer_band: float = spec(1.0, minimum=1.0, closed=True, added=True,
+                             doc="the layered motion's rows that move with the body: the "
+                             "body's height × this, about its middle (docs/morphing.md)")
     inner_distance: float | None = spec(None, minimum=0.0,
                                          doc="m: the distances' mesh moves rigidly with the body "
                                              "within it (default: from the body and the tank, "
@@ -146,8 +152,8 @@ class RunSettings:
         if self.motion_diffusivity not in MOTION_DIFFUSIVITIES:
             raise InputError(f"run.motion_diffusivity = {self.motion_diffusivity!r}: valid is "
                              f"one of {', '.join(MOTION_DIFFUSIVITIES)}")
-        if self.mesh_motion == "laplacian" and self.mesh_pose != "release":
-            raise InputError(f"run.mesh_motion = \"laplacian\" with run.mesh_pose = "
+        if self.mesh_motion in ("laplacian", "layered") and self.mesh_pose != "release":
+            raise InputError(f"run.mesh_motion = \"{self.mesh_motion}\" with run.mesh_pose = "
                              f"{self.mesh_pose!r}: valid is mesh_pose \"release\" (a mesh made "
                              "at rest is moved to the release by the six-DoF solver's scale) "
                              "or mesh_motion \"distances\"")

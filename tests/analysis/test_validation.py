@@ -195,8 +195,8 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     if morphing:
         assert result["runs"][4] == "coarse-morph1.5"
         assert result["mesh_motion"] == {
-            "motion": "laplacian", "diffusivity": "1/d²", "factor": 1.5,
-            "run": "coarse-morph1.5", "variant": "diffusivity 1/d instead of 1/d²",
+            "motion": "layered", "band": 1.0, "factor": 1.5, "run": "coarse-morph1.5",
+            "variant": "rows moving with the body over 1.5 × its height instead of 1 ×",
             "studied": True, "note": ""}
         # the fit of a 2 ms-sampled record recovers ζ to ~1e-4 of 0.1: the change within 1 %
         assert zeta["morphing"]["relative_change"] == pytest.approx(0.2, rel=0.01)
@@ -205,7 +205,7 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
         assert period["motion_uncertainty"] == pytest.approx(0.01, rel=0.01)
     else:
         assert result["mesh_motion"] == {
-            "motion": "laplacian", "diffusivity": "1/d²", "studied": False,
+            "motion": "layered", "band": 1.0, "studied": False,
             "note": "mesh motion not studied (floatfoam validate --no-morphing)"}
         assert "not studied" in zeta["morphing"]["note"]
         assert period["motion_uncertainty"] is None
@@ -238,12 +238,14 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     assert f"the {time_level} level against its time steps halved" in md
     assert "| 0.098 ± 0.004 |" in md
     assert "| U_motion | U_num |" in md
-    assert ("Mesh motion: the coarse level with diffusivity 1/d instead of 1/d² "
-            "(coarse-morph1.5); U_motion = |change|:" in md) == bool(morphing)
+    assert ("Mesh motion: the coarse level with rows moving with the body over 1.5 × its "
+            "height instead of 1 × (coarse-morph1.5); U_motion = |change|:" in md) \
+        == bool(morphing)
     assert ("U_num = √(GCI_levels² + GCI_time² + U_motion²)" in md) == bool(morphing)
     assert ("without an error of the mesh motion: mesh motion not studied (floatfoam "
             "validate --no-morphing)" in md) == (not morphing)
-    assert "The runs' mesh follows the body by the Laplacian (diffusivity 1/d²)" in md
+    assert "The runs' mesh follows the body by rows that move with the body by their " \
+        "height alone (over 1 × its height)" in md
     # the report gathers it: the study's tables and figure, and the extrapolated row
     cases = tmp_path / "cases"
     cases.mkdir()
@@ -256,8 +258,8 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
     # the summary line of the study, ending with the damping's change with the distances
     line = next(x for x in md.splitlines() if x.startswith("| cylinder_heave | heave |"))
     assert line.startswith(f"| cylinder_heave | heave | {5 if morphing else 4} | 0.6")
-    assert line.endswith("| +20 % (diffusivity 1/d instead of 1/d²) |" if morphing
-                         else "| — |")
+    varied = "| +20 % (rows moving with the body over 1.5 × its height instead of 1 ×) |"
+    assert line.endswith(varied if morphing else "| — |")
     assert "| heave | CFD fine ± U_num | 0.6" in md
     assert (tmp_path / "report" / "cylinder_heave" / "convergence.png").is_file()
 
@@ -350,7 +352,7 @@ def test_scaled_morphing_of_the_laplacian_spreads_its_diffusivity():
     from floatfoam.plan.morphing import morphing_variant, scaled_morphing
     from floatfoam.plan.release import release_state
 
-    case = load_case("elliptic_cylinder")  # heave alone on a 2D section
+    case = load_case("box_bilge")  # heeled on a 2D section
     pose = release_state(case, equilibrium(case))["pose"]
     assert domain.plan(case, "coarse", pose).motion == "laplacian"
     assert case.settings.run.motion_diffusivity == "quadratic"
@@ -369,6 +371,30 @@ def test_scaled_morphing_of_the_laplacian_spreads_its_diffusivity():
     assert scaled_morphing(case, pose, 1) is case
 
 
+def test_scaled_morphing_of_the_layered_motion_widens_its_rows():
+    """A heave release's mesh moves in rows by their height alone: a factor widens the rows
+    that move with the body (run.layer_band × the factor), a study's run of its own; one that
+    would leave part of the body outside them is refused in one line."""
+    from floatfoam.foam import domain
+    from floatfoam.hydrostatics.theory import equilibrium
+    from floatfoam.plan.morphing import morphing_variant, scaled_morphing
+    from floatfoam.plan.release import release_state
+
+    case = load_case("elliptic_cylinder")  # heave alone on a 2D section
+    pose = release_state(case, equilibrium(case))["pose"]
+    assert domain.plan(case, "coarse", pose).motion == "layered"
+    wider = scaled_morphing(case, pose, 1.5)
+    assert wider.settings.run.layer_band == 1.5
+    assert settings_digest(wider, "coarse") != settings_digest(case, "coarse")
+    assert scaled_morphing(wider, pose, 0.8).settings.run.layer_band == pytest.approx(1.2)
+    assert morphing_variant(case, "layered", 2) == \
+        "rows moving with the body over 2 × its height instead of 1 ×"
+    with pytest.raises(InputError) as err:
+        scaled_morphing(case, pose, 0.5)
+    assert "\n" not in str(err.value)
+    assert "--morphing 0.5" in str(err.value) and "deform the body" in str(err.value)
+
+
 @pytest.mark.parametrize("argv, word", [
     (["run", "cylinder_heave", "--dt-divisor", "0"], "--dt-divisor"),
     (["validate", "cylinder_heave", "--no-run"], "no finished run"),
@@ -376,7 +402,8 @@ def test_scaled_morphing_of_the_laplacian_spreads_its_diffusivity():
     (["validate", "cylinder_heave", "--time-level", "coarse"], "--time-level"),
     (["validate", "cylinder_heave", "--morphing", "1"], "--morphing"),
     (["validate", "cylinder_heave", "--morphing", "-2"], "--morphing"),
-    (["validate", "cylinder_heave", "--morphing", "0.5"], "narrower than 1/d²"),  # Laplacian
+    (["validate", "cylinder_heave", "--morphing", "0.5"], "deform the body"),  # layered
+    (["validate", "box_bilge", "--morphing", "0.5"], "narrower than 1/d²"),  # Laplacian
     (["validate", "cylinder_heave", "--morphing", "1.5", "--no-morphing"], "not allowed"),
     (["run", "cylinder_heave", "--morphing", "0"], "--morphing"),
     (["run", "cylinder_heave", "--morphing", "1.0000001"], "significant digits"),

@@ -144,9 +144,11 @@ def six_dof(name, run_dir, overrides=()):
 
 
 @pytest.mark.parametrize("name, overrides, motion", [
-    ("sphere", (), "laplacian"),  # heave alone, in a wedge
-    ("cylinder_heave", (), "laplacian"),  # heave alone, on the O-grid
-    ("box_bilge_heave", (), "laplacian"),
+    ("sphere", (), "layered"),  # heave alone, in a wedge
+    ("cylinder_heave", (), "layered"),  # heave alone, on the O-grid
+    ("box_bilge_heave", (), "layered"),  # heave alone, on a 2D section
+    ("sphere", ('run.mesh_motion="laplacian"',), "laplacian"),  # asked
+    ("cylinder_heave", ("run.layer_band=1.5",), "layered"),
     ("box_bilge", (), "laplacian"),  # heeled 10°: sway, heave and roll on a 2D section
     ("elliptic_cylinder_capsize", (), "distances"),  # released to turn over
     ("ellipsoid", (), "distances"),  # 3D: a zone 2.65 × the body's smallest dimension
@@ -154,16 +156,20 @@ def six_dof(name, run_dir, overrides=()):
     ("superellipsoid_buoy", (), "laplacian"),  # 3D, the whole tank: 0.45 ×
     ("lab_sphere", ('run.mesh_pose="equilibrium"',), "distances"),  # moved by the six-DoF scale
     ("elliptic_cylinder_capsize", ('run.mesh_motion="laplacian"',), "laplacian"),  # asked
-    ("cylinder_heave", ('run.motion_diffusivity="linear"',), "laplacian"),  # 1/d
+    ("cylinder_heave", ('run.mesh_motion="laplacian"', 'run.motion_diffusivity="linear"'),
+     "laplacian"),  # 1/d
     ("elliptic_cylinder_capsize", ('run.motion_diffusivity="linear"',), "distances"),  # ignored
     ("cylinder_heave", ("run.inner_distance=0.045", "run.outer_distance=0.24"), "distances"),
     ("ellipsoid_roll", ("run.outer_distance=0.5",), "distances"),  # a distance set is used
 ])
 def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, motion):
     """run.mesh_motion "auto": the six-DoF solver's distances where the case sets a distance,
-    for a release that turns the body over and a mesh made at equilibrium, else the Laplacian
+    for a release that turns the body over and a mesh made at equilibrium, else the layered
+    motion for a body free in heave alone, else the Laplacian
     in 2D, a wedge, and a 3D tank that leaves the distances a zone thinner than twice the
-    body's smallest dimension; the distances in a 3D tank with a wider zone. The Laplacian's
+    body's smallest dimension; the distances in a 3D tank with a wider zone. The layered
+    motion's dictionary: floatfoam's solver on the six-DoF coefficients with run.layer_band,
+    the tank's ends free to slide. The Laplacian's
     dictionaries: the displacement's diffusivity quadratic in the inverse distance from the
     body (linear with run.motion_diffusivity "linear"), the body's condition holding the six-DoF
     equations; no sixDoFRigidBodyState function object on either route."""
@@ -189,7 +195,24 @@ def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, mo
         assert body["mass"] == pytest.approx(case.mass * mesh.share)
     else:
         assert body is None and "sixDoFRigidBodyMotionCoeffs" in text
+        coeffs = FoamFile(tmp_path / "constant" / "dynamicMeshDict")
+        layered = coeffs["motionSolver"] == "layeredSixDoFRigidBodyMotion"
+        assert layered == (motion == "layered")
+        if layered:
+            assert coeffs["sixDoFRigidBodyMotionCoeffs"]["layerBandExpansion"] == \
+                case.settings.run.layer_band
     assert "motion" not in functions  # one source of the motion: the log (foam.motionlog)
+
+
+def test_the_layered_motion_is_refused_for_a_body_that_turns():
+    """The layered motion moves whole rows with the body: a body free to roll (box_bilge,
+    heeled) would turn rows across the tank, so it is refused in one line naming the setting
+    and the DoFs."""
+    with pytest.raises(InputError) as err:
+        planned("box_bilge", ['run.mesh_motion="layered"'])
+    message = str(err.value)
+    assert "\n" not in message
+    assert all(w in message for w in ("run.mesh_motion", "roll", "heave alone")), message
 
 
 @pytest.mark.parametrize("name", ["ellipsoid_pitch", "superellipsoid_buoy"])

@@ -181,10 +181,15 @@ def prepare(case, level, np_, force, build, divisor=1, morphing=1.0):
     return (plan.run_dir, *driver.prepare(plan, force))
 
 
+#: Debian's interFoam (nothing is run with it here), which lacks floatfoam's layered motion
+#: (src/solver/): the Laplacian moves the mesh
+STOCK = ['run.solver="/usr/bin/interFoam"', 'run.mesh_motion="laplacian"']
+
+
 @pytest.fixture
 def case():
     # Debian's interFoam exists on every machine with the apt package; nothing is run here.
-    return load_case("cylinder_heave", ['run.solver="/usr/bin/interFoam"'])
+    return load_case("cylinder_heave", STOCK)
 
 
 def test_prepare_refuses_resumes_and_forces(tmp_path, case):
@@ -195,7 +200,7 @@ def test_prepare_refuses_resumes_and_forces(tmp_path, case):
         prepare(case, "coarse", 2, False, tmp_path)  # other --np
     layout.mark_done(run_dir, "finished")
     assert prepare(case, "coarse", 1, False, tmp_path)[2]  # finished: reuse, no run
-    other = load_case("cylinder_heave", ['run.solver="/usr/bin/interFoam"',
+    other = load_case("cylinder_heave", [*STOCK,
                                          "run.write_interval=0.2"])
     with pytest.raises(InputError, match="finished run"):
         prepare(other, "coarse", 1, False, tmp_path)
@@ -206,12 +211,11 @@ def test_prepare_refuses_resumes_and_forces(tmp_path, case):
     assert all(name.startswith("coarse.old-") for name in moved[1:])
 
 
-SOLVER = 'run.solver="/usr/bin/interFoam"'
 
 
 def heave(end_time: float, interval: float = 0.05):
     """cylinder_heave run to ``end_time`` s, writing every ``interval`` s (nothing is run)."""
-    return load_case("cylinder_heave", [SOLVER, f"run.end_time={end_time}",
+    return load_case("cylinder_heave", [*STOCK, f"run.end_time={end_time}",
                                         f"run.write_interval={interval}"])
 
 
@@ -256,7 +260,7 @@ def test_the_stamp_leaves_out_how_far_the_run_goes():
     step lands on: in it."""
     digest = stamps.settings_digest(heave(0.1), "coarse")
     assert stamps.settings_digest(heave(0.2), "coarse") == digest
-    own = load_case("cylinder_heave", [SOLVER, "run.write_interval=0.05"])  # 3.2 s
+    own = load_case("cylinder_heave", [*STOCK, "run.write_interval=0.05"])  # 3.2 s
     assert stamps.settings_digest(own, "coarse") == digest
     assert stamps.settings_digest(heave(0.2, 0.1), "coarse") != digest
 
@@ -323,8 +327,8 @@ def test_a_refused_end_time_exits_2_with_one_line(tmp_path, monkeypatch, capsys)
     run_dir = synthetic_run(tmp_path, 0.3, 0.05, finished=False, times=[0.05, 0.1])
     monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path))
     before = sorted(p.relative_to(run_dir) for p in run_dir.rglob("*"))
-    assert main(["run", "cylinder_heave", "--np", "1", "--set", SOLVER, "--set",
-                 "run.end_time=0.1", "--set", "run.write_interval=0.05"]) == 2
+    assert main(["run", "cylinder_heave", "--np", "1", "--set", STOCK[0], "--set", STOCK[1],
+                 "--set", "run.end_time=0.1", "--set", "run.write_interval=0.05"]) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "run.end_time = 0.1 s" in err and "valid" in err
     assert sorted(p.relative_to(run_dir) for p in run_dir.rglob("*")) == before
@@ -340,7 +344,7 @@ def test_bad_run_input_exit_2_before_anything_is_written(capsys, monkeypatch, tm
                                                          setting, key):
     monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path / "build"))
     args = ["run", "cylinder_heave", "--level", "medium", "--set", setting, "--set",
-            'run.solver="/usr/bin/interFoam"']
+            STOCK[0], "--set", STOCK[1]]
     assert main(args) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and key in err and "valid" in err
@@ -353,7 +357,19 @@ def test_a_solver_lock_that_cannot_be_used_exits_2_before_anything_is_written(
     """FLOATFOAM_SOLVER_LOCK names a file in an existing folder, or the command stops."""
     monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path / "build"))
     monkeypatch.setenv("FLOATFOAM_SOLVER_LOCK", str(tmp_path / where))
-    assert main(["run", "cylinder_heave", "--set", 'run.solver="/usr/bin/interFoam"']) == 2
+    assert main(["run", "cylinder_heave", "--set", STOCK[0], "--set", STOCK[1]]) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "FLOATFOAM_SOLVER_LOCK" in err and "valid" in err
+    assert not (tmp_path / "build").exists()
+
+
+def test_a_solver_without_the_layered_motion_exits_2_before_anything_is_written(
+        capsys, monkeypatch, tmp_path):
+    """A heave release moves its mesh by floatfoam's layered motion, which only floatfoam's
+    interFoam has (src/solver/): Debian's is refused in one line that names both ways out."""
+    monkeypatch.setenv("FLOATFOAM_BUILD", str(tmp_path / "build"))
+    assert main(["run", "cylinder_heave", "--set", STOCK[0]]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "run.solver" in err and "layered" in err
+    assert "make setup" in err and "laplacian" in err
     assert not (tmp_path / "build").exists()

@@ -71,7 +71,9 @@ def _motion_method(motion: dict | None) -> str:
     if motion is None:
         return ("U_num = √(GCI_levels² + GCI_time²), the band around the fine level's value "
                 "(a study written before the mesh motion joined U_num).")
-    how = {"laplacian": f"the Laplacian (diffusivity {motion.get('diffusivity', '1/d²')})",
+    how = {"layered": "rows that move with the body by their height alone (over "
+                      f"{motion.get('band', 1.0):g} × its height)",
+           "laplacian": f"the Laplacian (diffusivity {motion.get('diffusivity', '1/d²')})",
            "distances": "the six-DoF solver's distances"}.get(motion.get("motion"),
                                                               "a motion no run recorded")
     runs = f"The runs' mesh follows the body by {how}."

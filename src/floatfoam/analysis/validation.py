@@ -29,8 +29,9 @@ the record, :func:`floatfoam.analysis.measured.record_fit`) it gives
   level itself;
 * the mesh-motion study: the coarse level once more with its mesh motion spread wider
   (``--morphing F``, :data:`DEFAULT_MORPHING` by default;
-  :func:`floatfoam.plan.morphing.scaled_morphing`): the six-DoF solver's distances times F, or
-  the Laplacian's diffusivity 1/d instead of 1/d². The mesh motion is the same on every level,
+  :func:`floatfoam.plan.morphing.scaled_morphing`): the six-DoF solver's distances times F,
+  the Laplacian's diffusivity 1/d instead of 1/d², or the layered motion's rows that move with
+  the body over F × its height. The mesh motion is the same on every level,
   so neither GCI sees it; on the laboratory sphere the distances moved the damping more than
   the levels did. U_motion is the whole relative change of each quantity between the two
   runs: a change that does not shrink with the levels is not refined away, so it is taken
@@ -327,8 +328,9 @@ def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_L
 def mesh_motion_record(case, found, morphing: float | None) -> dict:
     """How the study's runs moved their mesh (:func:`floatfoam.plan.zone.motion_in` the
     domain of its runs), and what its mesh-motion run varied: ``motion``
-    ("laplacian", "distances"; None without a run's record), ``diffusivity`` (the
-    Laplacian's, in words), ``factor``, ``run`` (its folder), ``variant`` (in words,
+    ("layered", "laplacian", "distances"; None without a run's record), ``diffusivity`` (the
+    Laplacian's, in words), ``band`` (the layered motion's run.layer_band), ``factor``,
+    ``run`` (its folder), ``variant`` (in words,
     :func:`floatfoam.plan.morphing.morphing_variant`), ``studied`` (its run finished: U_motion
     joins U_num) and ``note``. ``found``: :func:`study_runs`."""
     from floatfoam.plan.morphing import morphing_variant
@@ -342,6 +344,8 @@ def mesh_motion_record(case, found, morphing: float | None) -> dict:
     record = {"motion": motion}
     if motion == "laplacian":
         record["diffusivity"] = MOTION_DIFFUSIVITIES[case.settings.run.motion_diffusivity]
+    if motion == "layered":
+        record["band"] = case.settings.run.layer_band
     if morphing is None:
         return record | {"studied": False,
                          "note": f"{NOT_STUDIED} (floatfoam validate --no-morphing)"}

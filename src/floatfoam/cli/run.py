@@ -27,9 +27,10 @@ def register(sub) -> None:
     p.add_argument("--morphing", type=float, default=1.0, metavar="F",
                    help="spread the mesh motion wider (F > 1) or narrower: the six-DoF "
                         "morphing distances (run.inner_distance and run.outer_distance, or "
-                        "their defaults) × F, or for the Laplacian (F > 1 only) its "
-                        "diffusivity 1/d instead of 1/d²: a study of the mesh motion, run in "
-                        "<level>-morph<F> (default 1)")
+                        "their defaults) × F, for the Laplacian (F > 1 only) its "
+                        "diffusivity 1/d instead of 1/d², for the layered motion its rows "
+                        "that move with the body over F × its height: a study of the mesh "
+                        "motion, run in <level>-morph<F> (default 1)")
     p.set_defaults(func=run)
 
 

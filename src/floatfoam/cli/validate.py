@@ -30,9 +30,11 @@ def register(sub) -> None:
     motion.add_argument("--morphing", type=float, default=None, metavar="F",
                         help="the coarse level's mesh-motion run, which no level changes: its "
                         "six-DoF distances × F (÷ F at their defaults, which reach as far as "
-                        "the tank allows), or for the Laplacian (F > 1) its diffusivity "
-                        "1/d instead of 1/d²; each quantity's change is U_motion, in U_num "
-                        "(default: the study's own factor when its run is finished, else "
+                        "the tank allows), for the Laplacian (F > 1) its diffusivity "
+                        "1/d instead of 1/d², for the layered motion its rows that move "
+                        "with the body over F × the body's height; each quantity's change "
+                        "is U_motion, in U_num (default: the study's own factor when its run "
+                        "is finished, else "
                         "1.5)")
     motion.add_argument("--no-morphing", action="store_true",
                         help="no mesh-motion run: U_num from the levels and the time step "

@@ -125,8 +125,9 @@ def run_case(case: Case, level: str = "coarse", np_: int = 1, force: bool = Fals
     ``equilibrium`` is the case's (solved here when not given); ``hostfile`` goes to mpirun.
     ``time_step_divisor`` k > 1 divides the level's time-step limits (largest step, Courant
     numbers) by k, in ``<level>-dt<k>``: a time-step study; ``morphing`` f ≠ 1 spreads its
-    mesh motion wider or narrower by f (the six-DoF distances × f, or the Laplacian's
-    diffusivity 1/d), in ``<level>-morph<f>``: a study of the mesh motion."""
+    mesh motion wider or narrower by f (the six-DoF distances × f, the Laplacian's
+    diffusivity 1/d, the layered motion's rows over f × the body's height), in
+    ``<level>-morph<f>``: a study of the mesh motion."""
     return run_plan(resolve(case, level, np_, build_dir=build_dir,
                             equilibrium=equilibrium, hostfile=hostfile,
                             divisor=time_step_divisor, morphing=morphing), force)

@@ -89,6 +89,9 @@ def render(plan: RunPlan, mesh: RunMesh) -> RunRecord:
     if body is not None:  # the Laplacian's body: its displacement from the six-DoF equations
         field = FoamFile(run_dir / "0.orig" / "pointDisplacement")
         field["boundaryField"]["body"] = body
+    if mesh.motion == "layered" and "sides" in mesh.patches:  # rows slide along the ends
+        FoamFile(run_dir / "0.orig" / "pointDisplacement")["boundaryField"]["sides"] = \
+            {"type": "calculated", "value": [0.0, 0.0, 0.0]}
     write_dict(run_dir / "system" / "setAlphaFieldDict",
                 {"field": "alpha.water", "type": "plane", "origin": [0.0, 0.0, 0.0],
                  "direction": [0.0, 0.0, 1.0]})
@@ -262,6 +265,8 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | Non
         coeffs["constraints"] = constraints(case, mesh, made)
     if not np.allclose(orientation, np.eye(3), atol=1e-15):
         coeffs["orientation"] = [round(float(v), 15) for v in orientation.ravel()]
+    if mesh.motion == "layered":
+        coeffs["layerBandExpansion"] = case.settings.run.layer_band
     if mesh.motion == "laplacian":
         write_dict(run_dir / "constant" / "dynamicMeshDict", {
             "dynamicFvMesh": "dynamicMotionSolverFvMesh",
@@ -276,11 +281,14 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | Non
     write_dict(run_dir / "constant" / "dynamicMeshDict", {
         "dynamicFvMesh": "dynamicMotionSolverFvMesh",
         "motionSolverLibs": ['"libsixDoFRigidBodyMotion.so"'],
-        "motionSolver": "sixDoFRigidBodyMotion",
+        "motionSolver": LAYERED if mesh.motion == "layered" else "sixDoFRigidBodyMotion",
         "sixDoFRigidBodyMotionCoeffs": coeffs,
     })
     return None
 
+
+#: floatfoam's six-DoF motion solver whose scale depends on height alone (src/solver/)
+LAYERED = "layeredSixDoFRigidBodyMotion"
 
 # the displacement's diffusivity by run.motion_diffusivity, d the distance from the body:
 # 1/d² (the default) moves the cells near the body nearly with it and the far ones little; 1/d

@@ -24,8 +24,9 @@ def check_morphing(factor: float, *, study: bool = False) -> None:
         raise InputError(f"--morphing {factor!r}: valid is a factor > 0 of at most 6 "
                          "significant digits" + (" other than 1 (--no-morphing: no mesh-motion "
                                                  "run)" if study else "") +
-                         " (1.5: both morphing distances one and a half times the case's, or "
-                         "the Laplacian's diffusivity 1/d instead of 1/d²)")
+                         " (1.5: both morphing distances one and a half times the case's, "
+                         "the Laplacian's diffusivity 1/d instead of 1/d², or the layered "
+                         "motion's rows that move with the body over 1.5 × their height)")
 
 
 def scaled_morphing(case: Case, release: Pose, factor: float) -> Case:
@@ -38,6 +39,9 @@ def scaled_morphing(case: Case, release: Pose, factor: float) -> Case:
       body and the tank (:func:`floatfoam.plan.zone.distances`) — both multiplied by ``factor``, or
       divided by it where the defaults already reach as far as the tank allows
       (:func:`distance_factor`);
+    * the layered motion: run.layer_band multiplied by ``factor`` (the rows that move with
+      the body span ``factor`` × as much height about its middle); a band narrower than the
+      body, which would deform the body, is refused;
     * the Laplacian, for ``factor`` > 1: run.motion_diffusivity "linear", whose 1/d spreads
       the deformation further from the body than the default 1/d². A factor < 1, or a case
       already at 1/d, is refused: no narrower nor wider Laplacian is offered.
@@ -59,6 +63,8 @@ def scaled_morphing(case: Case, release: Pose, factor: float) -> Case:
         return with_overrides(case, ['run.mesh_motion="distances"',
                                      f"run.inner_distance={mesh.inner * scale!r}",
                                      f"run.outer_distance={mesh.outer * scale!r}"])
+    if mesh.motion == "layered":
+        return with_overrides(case, [f"run.layer_band={_layer_band(case, factor)!r}"])
     wider = _wider_diffusivity(case, factor)
     return with_overrides(case, [f'run.motion_diffusivity="{wider}"'])
 
@@ -70,6 +76,19 @@ def distance_factor(case: Case, factor: float) -> float:
     (:func:`floatfoam.plan.zone.distances`): widened, the zone would squeeze the walls'
     first cells; narrowed as much, it says as much of the distances' effect."""
     return 1.0 / factor if factor > 1 and case.settings.run.outer_distance is None else factor
+
+
+def _layer_band(case: Case, factor: float) -> float:
+    """run.layer_band of the layered motion scaled by ``factor``; InputError below 1 (rows
+    moving with the body that do not span it would deform it)."""
+    band = case.settings.run.layer_band * factor
+    if band < 1:
+        raise InputError(f"--morphing {factor:g} narrows the layered motion's rows that move "
+                         f"with the body to {band:g} × the body's height, which would deform "
+                         "the body: valid is a factor ≥ "
+                         f"{1 / case.settings.run.layer_band:g} (1.5: rows over 1.5 × its "
+                         "height)")
+    return band
 
 
 #: the diffusivity a Laplacian run of a mesh-motion study takes (:func:`scaled_morphing`)
@@ -94,8 +113,11 @@ def _wider_diffusivity(case: Case, factor: float) -> str:
 
 def morphing_variant(case: Case, motion: str, factor: float) -> str:
     """What :func:`scaled_morphing` changes in a run whose mesh follows the body by
-    ``motion`` ("laplacian" or "distances"), in words: "distances × 1.5", "diffusivity 1/d
-    instead of 1/d²"."""
+    ``motion`` ("layered", "laplacian" or "distances"), in words: "distances × 1.5",
+    "diffusivity 1/d instead of 1/d²", "rows moving with the body over 1.5 × its height"."""
+    if motion == "layered":
+        return (f"rows moving with the body over {_layer_band(case, factor):g} × its height "
+                f"instead of {case.settings.run.layer_band:g} ×")
     if motion == "distances":
         scale = distance_factor(case, factor)
         return f"distances × {factor:g}" if scale == factor else \

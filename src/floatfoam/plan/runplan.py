@@ -13,10 +13,11 @@ from pathlib import Path
 from floatfoam import layout
 from floatfoam.case import Case
 from floatfoam.hydrostatics.theory import Equilibrium
+from floatfoam.plan import zone
 from floatfoam.plan.level import level_index
 from floatfoam.plan.morphing import check_morphing, scaled_morphing
 from floatfoam.plan.release import end_time_of, mesh_pose, release_state, smaller_steps
-from floatfoam.plan.stamps import settings_digest, solver_path
+from floatfoam.plan.stamps import check_layered_solver, settings_digest, solver_path
 from floatfoam.tank import Pose
 
 
@@ -88,6 +89,8 @@ def resolve(case: Case, level: str = "coarse", np_: int = 1, *,
     made_at = mesh_pose(run, state, equilibrium)
     end_time = end_time_of(run)
     run = scaled_morphing(run, state["pose"], morphing)
+    if solver and zone.of_case(run, state["pose"]).motion == "layered":
+        check_layered_solver(run)
     run_dir = layout.run_dir(case.name, level, build_dir, time_step_divisor=divisor,
                              morphing=morphing)
     digest = settings_digest(case, level, divisor=divisor, morphing=morphing,

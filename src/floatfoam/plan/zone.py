@@ -15,7 +15,7 @@ from floatfoam.tank import Pose, body_extents, tank
 
 @dataclass(frozen=True)
 class MeshMotion:
-    """How a run's mesh follows the body: ``motion`` "laplacian" or "distances"
+    """How a run's mesh follows the body: ``motion`` "layered", "laplacian" or "distances"
     (:func:`mesh_motion`), and the six-DoF solver's ``inner`` and ``outer`` distances (m,
     :func:`distances`; used by "distances" only)."""
 
@@ -33,9 +33,9 @@ def of_case(case: Case, release: Pose) -> MeshMotion:
 
 
 def motion_in(case: Case, kind: str) -> str | None:
-    """How the mesh of a run of ``case`` in a domain of ``kind`` follows the body, "laplacian"
-    or "distances" (:func:`resolve` at the case's release); None when the release or the
-    tank is refused."""
+    """How the mesh of a run of ``case`` in a domain of ``kind`` follows the body, "layered",
+    "laplacian" or "distances" (:func:`resolve` at the case's release); None when the release
+    or the tank is refused."""
     from floatfoam.hydrostatics.theory import equilibrium
     from floatfoam.plan.release import release_state
 
@@ -74,6 +74,11 @@ def mesh_motion(case: Case, kind: str, band: float) -> str:
     the width of the six-DoF distances' zone (outer − inner) over the body's smallest
     dimension across.
 
+    "layered": floatfoam's six-DoF motion solver whose scale depends on the height alone
+    (``layeredSixDoFRigidBodyMotion``, src/solver/): the rows of points across the body's height
+    move with it, those below and above it less, linearly to nothing at the tank's bottom and
+    top; every row stays horizontal and the cells beside the body are not deformed. For a body
+    free in heave alone, and no setting but ``run.layer_band``.
     "laplacian": ``displacementLaplacian`` with the diffusivity ``quadratic inverseDistance
     (body)`` and the body's point displacement from the six-DoF equations
     (``sixDoFRigidBodyDisplacement``): the whole tank deforms, the cells near the body move
@@ -84,20 +89,44 @@ def mesh_motion(case: Case, kind: str, band: float) -> str:
     ``run.outer_distance`` (a distance set is a distance used), for a release that turns the
     body over (a heel or trim in a DoF of non-positive stiffness, :func:`turns_over`: a
     displacement field cannot follow a turn of tens of degrees) and for a mesh made at
-    equilibrium (moved to the release by the six-DoF solver's scale); else the Laplacian on a
+    equilibrium (moved to the release by the six-DoF solver's scale); else the layered motion
+    for a body free in heave alone (:func:`heave_only`: a heave release), on any mesh; else
+    the Laplacian on a
     2D section's, an O-grid's or a wedge's mesh, and in 3D where the distances' zone is
     thinner than :data:`THIN_BAND` × the body's smallest dimension (there the distances
     squeeze its cells until the step collapses; the Laplacian runs at about their cost), the
     distances in a 3D tank that leaves them a wider zone (the Laplacian's period and damping
     at ~0.7 × its wall). The measurements behind this rule: docs/morphing.md."""
     run = case.settings.run
+    if run.mesh_motion == "layered" and not heave_only(case, kind):
+        raise InputError("run.mesh_motion = \"layered\" for a body free in "
+                         f"{', '.join(free_names(case, kind))}: its rows would turn with the "
+                         "body; valid is a body free in heave alone (a heave release, or "
+                         "motion.free = [\"heave\"]), or mesh_motion \"laplacian\", "
+                         "\"distances\" or \"auto\"")
     if run.mesh_motion != "auto":
         return run.mesh_motion
     if run.inner_distance is not None or run.outer_distance is not None \
             or run.mesh_pose != "release" or turns_over(case):
         return "distances"
+    if heave_only(case, kind):
+        return "layered"
     planar = kind in ("2d", "wedge", "ogrid")
     return "laplacian" if planar or band < THIN_BAND else "distances"
+
+
+def free_names(case: Case, kind: str) -> list[str]:
+    """The DoFs the body is free in, in a domain of ``kind`` (:func:`floatfoam.dofs.free_dofs`:
+    a wedge holds a body of revolution to heave)."""
+    from floatfoam.dofs import free_dofs
+
+    return [d.name for d in free_dofs(case.release, axisymmetric=kind == "wedge",
+                                      chosen=case.settings.motion.free)]
+
+
+def heave_only(case: Case, kind: str) -> bool:
+    """Whether the body is free in heave alone: the layered motion's domain."""
+    return free_names(case, kind) == ["heave"]
 
 
 #: the narrowest zone, × the body's smallest dimension across, in which "auto" keeps the
