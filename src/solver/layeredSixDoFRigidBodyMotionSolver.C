@@ -20,7 +20,7 @@
     docs/openfoam-v1912.md), which a scale that varies along a row would tilt.
 
     The base solver's own distance scale (`innerDistance`, `outerDistance`) is computed once at
-    the start and not used.
+    the start and not used: the motionScale field it writes then is not this motion's.
 \*---------------------------------------------------------------------------*/
 
 #include "sixDoFRigidBodyMotionSolver.H"
@@ -78,7 +78,7 @@ class layeredSixDoFRigidBodyMotionSolver
             coeffDict().lookupOrDefault<scalar>("layerBandExpansion", 1.0);
         const scalar middle = 0.5*(bodyLo + bodyHi);
         const scalar half = 0.5*(bodyHi - bodyLo)*expansion;
-        // a cell height of room is kept between the band and the mesh's bottom and top
+        // a thousandth of the mesh's height is kept between the band and its bottom and top
         const scalar room = 1e-3*(top - bottom);
         const scalar lo = max(middle - half, bottom + room);
         const scalar hi = min(middle + half, top - room);
