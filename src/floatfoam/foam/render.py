@@ -16,7 +16,6 @@ import numpy as np
 from foamlib import FoamFile
 
 from floatfoam.case import Case
-from floatfoam.dofs import free_dofs
 from floatfoam.errors import InputError
 from floatfoam.foam import domain
 from floatfoam.foam.dictionaries import write_dict
@@ -25,6 +24,7 @@ from floatfoam.foam.patches import write_initial_fields
 from floatfoam.layout import COMMON_DIR
 from floatfoam.plan.record import RunRecord
 from floatfoam.plan.runplan import RunPlan
+from floatfoam.plan.zone import LAYERED_SOLVER, free_names
 from floatfoam.settings import time_scheme_coefficient
 
 SCOTCH = Path("/usr/lib/libscotchDecomp.so")
@@ -197,8 +197,7 @@ def constraints(case: Case, mesh: RunMesh, cog: list[float]) -> dict:
     (no translation free), on a ``line`` (one), in a ``plane`` (two) or not at all (three);
     the attitude by ``orientation`` (no rotation free), about an ``axis`` (roll or pitch), or
     not at all (both, and yaw with them: no v1912 constraint holds yaw alone)."""
-    free = {d.name for d in free_dofs(case.release, axisymmetric=mesh.kind == "wedge",
-                                      chosen=case.settings.motion.free)}
+    free = set(free_names(case, mesh.kind))
     moving = [name for name in TRANSLATIONS if name in free]
     held = [name for name in TRANSLATIONS if name not in free]
     out = {}
@@ -281,14 +280,11 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | Non
     write_dict(run_dir / "constant" / "dynamicMeshDict", {
         "dynamicFvMesh": "dynamicMotionSolverFvMesh",
         "motionSolverLibs": ['"libsixDoFRigidBodyMotion.so"'],
-        "motionSolver": LAYERED if mesh.motion == "layered" else "sixDoFRigidBodyMotion",
+        "motionSolver": LAYERED_SOLVER if mesh.motion == "layered" else "sixDoFRigidBodyMotion",
         "sixDoFRigidBodyMotionCoeffs": coeffs,
     })
     return None
 
-
-#: floatfoam's six-DoF motion solver whose scale depends on height alone (src/solver/)
-LAYERED = "layeredSixDoFRigidBodyMotion"
 
 # the displacement's diffusivity by run.motion_diffusivity, d the distance from the body:
 # 1/d² (the default) moves the cells near the body nearly with it and the far ones little; 1/d

@@ -143,18 +143,13 @@ def solver_path(case: Case, check: bool = True) -> Path:
     return path
 
 
-#: the type name of floatfoam's layered motion solver, linked into floatfoam's interFoam
-#: (src/solver/, scripts/build_solver.sh)
-LAYERED_SOLVER = b"layeredSixDoFRigidBodyMotion"
-
-
 def check_layered_solver(case: Case) -> None:
     """InputError when the interFoam to run (:func:`solver_path`) lacks floatfoam's layered
     motion, which the run's mesh takes: another build (``run.solver``), or floatfoam's own
     built before it (``make setup`` builds it again)."""
     path = solver_path(case)
     with open(path, "rb") as binary:
-        if LAYERED_SOLVER in binary.read():
+        if zone.LAYERED_SOLVER.encode() in binary.read():
             return
     raise InputError(f"run.solver = {str(path)!r} lacks floatfoam's layered mesh motion "
                      "(src/solver/), which a body free in heave alone takes: valid is "

@@ -115,6 +115,11 @@ def mesh_motion(case: Case, kind: str, band: float) -> str:
     return "laplacian" if planar or band < THIN_BAND else "distances"
 
 
+#: the type name of floatfoam's layered motion solver (src/solver/), linked into floatfoam's
+#: interFoam by scripts/build_solver.sh
+LAYERED_SOLVER = "layeredSixDoFRigidBodyMotion"
+
+
 def free_names(case: Case, kind: str) -> list[str]:
     """The DoFs the body is free in, in a domain of ``kind`` (:func:`floatfoam.dofs.free_dofs`:
     a wedge holds a body of revolution to heave)."""
