@@ -52,20 +52,23 @@ MESH_MOTIONS = ("auto", "laplacian", "distances", "layered")
 MOTION_DIFFUSIVITIES = {"quadratic": "1/d²", "linear": "1/d"}
 
 
-def time_scheme_coefficient(scheme: str) -> float | None:
-    """ψ of ``run.time_scheme`` "CrankNicolson ψ", None for "Euler"; anything else refused."""
+def time_scheme_coefficient(scheme: str, key: str = "run.time_scheme") -> float | None:
+    """ψ of a time scheme "CrankNicolson ψ", None for "Euler"; anything else refused in one
+    line naming the setting ``key``."""
     words = scheme.split()
     if words == ["Euler"]:
         return None
     valid = 'valid: "Euler" or "CrankNicolson ψ" with 0 ≤ ψ ≤ 1, e.g. "CrankNicolson 0.9"'
+    if key == "run.interface_time_scheme":
+        valid = valid.replace('valid: "Euler"', 'valid: "auto", "Euler"')
     if len(words) != 2 or words[0] != "CrankNicolson":
-        raise InputError(f"run.time_scheme = {scheme!r}: {valid}")
+        raise InputError(f"{key} = {scheme!r}: {valid}")
     try:
         psi = float(words[1])
     except ValueError:
-        raise InputError(f"run.time_scheme = {scheme!r}: ψ is not a number; {valid}") from None
+        raise InputError(f"{key} = {scheme!r}: ψ is not a number; {valid}") from None
     if not 0.0 <= psi <= 1.0:
-        raise InputError(f"run.time_scheme = {scheme!r}: ψ = {psi:g}; {valid}")
+        raise InputError(f"{key} = {scheme!r}: ψ = {psi:g}; {valid}")
     return psi
 
 
@@ -143,9 +146,20 @@ class RunSettings:
                              "(first order), or \"CrankNicolson ψ\" with 0 ≤ ψ ≤ 1 (second "
                              "order at ψ = 1; any ψ needs the shared fvSolution's "
                              "nAlphaSubCycles 1, which interFoam checks)")
+    # the interface's advection carries the first-order step's error of a heave's period and
+    # damping, and Crank–Nicolson for it alone takes it out; a roll's period it moves and
+    # makes hang on the step (docs/studies/time-step.md)
+    interface_time_scheme: str = spec("auto", kind=str,
+                                      doc="the interface's (α's) time scheme: \"CrankNicolson "
+                                      "ψ\" with 0 ≤ ψ ≤ 1, Euler, or auto: Crank–Nicolson 0.9 "
+                                      "for a body free in heave alone, Euler for one free to "
+                                      "turn; the momentum takes run.time_scheme "
+                                      "(docs/studies/time-step.md)")
 
     def check(self) -> None:
         time_scheme_coefficient(self.time_scheme)
+        if self.interface_time_scheme != "auto":
+            time_scheme_coefficient(self.interface_time_scheme, "run.interface_time_scheme")
         if self.mesh_motion not in MESH_MOTIONS:
             raise InputError(f"run.mesh_motion = {self.mesh_motion!r}: valid is one of "
                              f"{', '.join(MESH_MOTIONS)}")

@@ -313,11 +313,21 @@ def test_outer_correctors_reach_fvsolution(tmp_path, overrides, outer):
     assert FoamFile(tmp_path / "system" / "fvSolution")["PIMPLE"]["nOuterCorrectors"] == outer
 
 
-@pytest.mark.parametrize("scheme, written", [(None, "Euler"), ("Euler", "Euler"),
-                                             ("CrankNicolson 0.9", ("CrankNicolson", 0.9)),
-                                             ("CrankNicolson 1", ("CrankNicolson", 1))])
-def test_time_scheme_reaches_fvschemes(tmp_path, scheme, written):
-    """run.time_scheme sets ddtSchemes' default; without it the shared Euler stays."""
+@pytest.mark.parametrize("name, key, scheme, entry, written", [
+    ("box_bilge", "time_scheme", None, "default", "Euler"),
+    ("box_bilge", "time_scheme", "Euler", "default", "Euler"),
+    ("box_bilge", "time_scheme", "CrankNicolson 0.9", "default", ("CrankNicolson", 0.9)),
+    ("box_bilge", "time_scheme", "CrankNicolson 1", "default", ("CrankNicolson", 1.0)),
+    # "auto": Crank–Nicolson 0.9 for a body free in heave alone, Euler for one free to turn
+    ("lab_sphere", "interface_time_scheme", None, "ddt(alpha)", ("CrankNicolson", 0.9)),
+    ("box_bilge", "interface_time_scheme", None, "ddt(alpha)", "Euler"),
+    ("lab_sphere", "interface_time_scheme", "Euler", "ddt(alpha)", "Euler"),
+    ("box_bilge", "interface_time_scheme", "CrankNicolson 1", "ddt(alpha)",
+     ("CrankNicolson", 1.0))])
+def test_time_schemes_reach_fvschemes(tmp_path, name, key, scheme, entry, written):
+    """run.time_scheme sets ddtSchemes' default (without it the shared Euler stays),
+    run.interface_time_scheme its ddt(alpha), by default Crank–Nicolson 0.9 for a body free in
+    heave alone and Euler for one free to turn; the file as interFoam reads it."""
     import shutil
 
     from foamlib import FoamFile
@@ -325,10 +335,13 @@ def test_time_scheme_reaches_fvschemes(tmp_path, scheme, written):
     from floatfoam.layout import COMMON_DIR
 
     shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
-    case, _, mesh = planned("box_bilge", [f'run.time_scheme="{scheme}"'] if scheme else [])
+    case, _, mesh = planned(name, [f'run.{key}="{scheme}"'] if scheme else [])
     render._solution(case, tmp_path, mesh)
-    default = FoamFile(tmp_path / "system" / "fvSchemes")["ddtSchemes"]["default"]
-    assert (tuple(default) if not isinstance(default, str) else default) == written
+    value = FoamFile(tmp_path / "system" / "fvSchemes")["ddtSchemes"][entry]
+    assert (tuple(value) if not isinstance(value, str) else value) == written
+    text = (tmp_path / "system" / "fvSchemes").read_text()
+    words = written if isinstance(written, str) else " ".join(map(str, written))
+    assert f"{entry} {words};" in " ".join(text.split())
 
 
 def test_mesh_made_at_equilibrium(tmp_path):

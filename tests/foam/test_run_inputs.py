@@ -96,6 +96,8 @@ def test_body_resolution_bound_names_the_memory():
     (["run", "box_bilge", "--set", 'run.time_scheme="CrankNicolson 2"'],
      ["run.time_scheme", "0 ≤ ψ ≤ 1"]),
     (["run", "box_bilge", "--set", 'run.time_scheme="backward"'], ["run.time_scheme", "Euler"]),
+    (["run", "box_bilge", "--set", 'run.interface_time_scheme="CrankNicolson 1.5"'],
+     ["run.interface_time_scheme", "0 ≤ ψ ≤ 1"]),
     (["validate", "cylinder_heave", "--set", 'run.motion_diffusivity="cubic"'],
      ["run.motion_diffusivity = 'cubic'", "valid is one of quadratic, linear"]),
     (["run", "sphere", "--set", "mesh.gmsh.layers_3d=3"],  # its heave meshes a wedge

@@ -30,7 +30,9 @@ def time_order(case, schemes: Path | None = None) -> float:
     """The formal order of the time scheme the case's runs take: Crank–Nicolson where the case
     names it (``run.time_scheme``), else the ``ddtSchemes`` default of the shared fvSchemes
     (``schemes``, default cases/_common/system/fvSchemes), read there so that the GCI follows
-    a change of it. A scheme of no known order is refused (InputError naming it)."""
+    a change of it. A scheme of no known order is refused (InputError naming it). The
+    interface's own scheme (``run.interface_time_scheme``) does not raise it: the momentum's
+    Euler stays first order, and a study's halved step measures what it leaves."""
     psi = time_scheme_coefficient(case.settings.run.time_scheme)
     if psi is None:
         from foamlib import FoamFile

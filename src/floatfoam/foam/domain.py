@@ -47,7 +47,7 @@ class RunMesh:
         domain decomposition)
     inner, outer : six-DoF morphing distances from the body (rigid inside, fixed beyond), for
         ``motion`` "distances"
-    motion : how the mesh follows the body, "laplacian" or "distances"
+    motion : how the mesh follows the body, "layered", "laplacian" or "distances"
         (:func:`floatfoam.plan.zone.mesh_motion`)
     ogrid : the O-grid (kind "ogrid"); msh : the gmsh file (other kinds, once generated)
     immersed_error : relative error of the body patch's immersed volume at the pose the mesh is

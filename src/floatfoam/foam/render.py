@@ -24,7 +24,7 @@ from floatfoam.foam.patches import write_initial_fields
 from floatfoam.layout import COMMON_DIR
 from floatfoam.plan.record import RunRecord
 from floatfoam.plan.runplan import RunPlan
-from floatfoam.plan.zone import LAYERED_SOLVER, free_names
+from floatfoam.plan.zone import LAYERED_SOLVER, free_names, heave_only
 from floatfoam.settings import time_scheme_coefficient
 
 SCOTCH = Path("/usr/lib/libscotchDecomp.so")
@@ -160,8 +160,9 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
 
 def _solution(case: Case, run_dir: Path, mesh: RunMesh) -> None:
     """pcorr's solver and α's correctors for the mesh's kind (:data:`PCORR_BY_GAMG`,
-    :data:`ALPHA_ONE_CORRECTOR`); the time scheme
-    (``run.time_scheme``: the shared fvSchemes' Euler unless the case names Crank–Nicolson)."""
+    :data:`ALPHA_ONE_CORRECTOR`); the time schemes: the momentum's (``run.time_scheme``: the
+    shared fvSchemes' Euler unless the case names Crank–Nicolson) and the interface's
+    (:func:`interface_scheme`, ``ddt(alpha)``)."""
     solvers = FoamFile(run_dir / "system" / "fvSolution")["solvers"]
     if mesh.kind in PCORR_BY_GAMG:
         shared = solvers['"pcorr.*"']
@@ -169,10 +170,31 @@ def _solution(case: Case, run_dir: Path, mesh: RunMesh) -> None:
                                 "relTol": shared["relTol"]}
     if mesh.kind in ALPHA_ONE_CORRECTOR:
         solvers['"alpha.water.*"']["nAlphaCorr"] = 1
-    psi = time_scheme_coefficient(case.settings.run.time_scheme)
+    run = case.settings.run
+    ddt = FoamFile(run_dir / "system" / "fvSchemes")["ddtSchemes"]
+    psi = time_scheme_coefficient(run.time_scheme)
     if psi is not None:
-        FoamFile(run_dir / "system" / "fvSchemes")["ddtSchemes"]["default"] = ("CrankNicolson",
-                                                                             psi)
+        ddt["default"] = ("CrankNicolson", psi)
+    psi = time_scheme_coefficient(interface_scheme(case, mesh.kind),
+                                  "run.interface_time_scheme")
+    ddt["ddt(alpha)"] = "Euler" if psi is None else ("CrankNicolson", psi)
+
+
+#: the interface's time scheme that ``run.interface_time_scheme = "auto"`` takes for a body
+#: free in heave alone: its period and damping the same at the step and at half of it, on the
+#: layered motion and on the Laplacian (docs/studies/time-step.md)
+INTERFACE_CRANK_NICOLSON = "CrankNicolson 0.9"
+
+
+def interface_scheme(case: Case, kind: str) -> str:
+    """The interface's (α's) time scheme of a run of ``case`` in a domain of ``kind``:
+    ``run.interface_time_scheme``, "auto" resolved to :data:`INTERFACE_CRANK_NICOLSON` for a
+    body free in heave alone (:func:`floatfoam.plan.zone.heave_only`) and to Euler for a body
+    free to turn, whose roll period it moved by 0.6 % and made hang on the step."""
+    scheme = case.settings.run.interface_time_scheme
+    if scheme != "auto":
+        return scheme
+    return INTERFACE_CRANK_NICOLSON if heave_only(case, kind) else "Euler"
 
 
 def _fluid(case: Case, run_dir: Path) -> None:
