@@ -142,10 +142,9 @@ class RunSettings:
                                          doc="m/s: a body speed above it stops the run as diverged")
     # Crank–Nicolson ψ 0.9 on box_bilge diverges at relaxation 0.7, and at 0.4 the roll gains
     # energy (docs/studies/cases/box_bilge.md); the cases keep Euler
-    time_scheme: str = spec("Euler", kind=str, doc="the time derivative's scheme: Euler "
-                             "(first order), or \"CrankNicolson ψ\" with 0 ≤ ψ ≤ 1 (second "
-                             "order at ψ = 1; any ψ needs the shared fvSolution's "
-                             "nAlphaSubCycles 1, which interFoam checks)")
+    time_scheme: str = spec("Euler", kind=str, doc="the time derivatives' scheme but the "
+                             "interface's (run.interface_time_scheme): Euler (first order), "
+                             "or \"CrankNicolson ψ\" with 0 ≤ ψ ≤ 1 (second order at ψ = 1)")
     # the interface's advection carries the first-order step's error of a heave's period and
     # damping, and Crank–Nicolson for it alone takes it out; a roll's period it moves and
     # makes hang on the step (docs/studies/time-step.md)
@@ -153,8 +152,9 @@ class RunSettings:
                                       doc="the interface's (α's) time scheme: \"CrankNicolson "
                                       "ψ\" with 0 ≤ ψ ≤ 1, Euler, or auto: Crank–Nicolson 0.9 "
                                       "for a body free in heave alone, Euler for one free to "
-                                      "turn; the momentum takes run.time_scheme "
-                                      "(docs/studies/time-step.md)")
+                                      "turn (Crank–Nicolson needs the shared "
+                                      "fvSolution's nAlphaSubCycles 1, which interFoam "
+                                      "checks; docs/studies/time-step.md)")
 
     def check(self) -> None:
         time_scheme_coefficient(self.time_scheme)

@@ -154,12 +154,14 @@ def test_lab_sphere_first_cycle_against_the_basin(tmp_path):
     settles at (analysis.settled.settled_level: known here, so the record's first 1.1 s is
     enough), against the four drops' reference.
 
-    The case's grid study (`make validate CASE=lab_sphere`, its README) puts the fine level
-    +0.01 % and +0.2 % from them, the coarse +0.29 % and −0.2 %. First period within 0.5 %:
-    coarse to fine 0.28 %, the basin's ± 0.07 %, rounded up (the fine level's U_num is 0.28 %,
-    at order 2 where the levels' p = 4.1 is no bound). Trough within 1.5 %: the levels move it
-    by 0.4 % from coarse to fine, the halved time step by 0.6 %, the basin's ± 0.4 %. (At the
-    six-DoF morphing distances 0.2/1.2 m, the same coarse numbers to 0.02 %.)"""
+    The case's grid study at the defaults (`floatfoam validate lab_sphere`, its README: the
+    interface on Crank–Nicolson) puts the coarse, medium and fine levels −0.05, −0.28 and
+    −0.09 % from the basin's first period and their troughs 2.0, 1.7 and 1.4 % deeper than
+    its. First period within 0.5 %: the levels' spread 0.23 % and the halved step's 0.12 %, the
+    basin's ± 0.07 %, rounded up. Trough within 2.5 %: the levels converge to a trough 0.9 %
+    deeper than the basin's (as deep as potential flow's with nonlinear restoring; the paper's
+    five CFD codes 3–4 % deeper), the coarse level's 1.1 % deeper still, the basin's ± 0.4 %,
+    rounded up."""
     from floatfoam import layout
     from floatfoam.analysis.extrema import crossing_reduction
     from floatfoam.analysis.measured import reference_entry
@@ -173,7 +175,7 @@ def test_lab_sphere_first_cycle_against_the_basin(tmp_path):
     period = reference_entry(case.reference, "heave_first_period")[0]
     trough = reference_entry(case.reference, "heave_first_trough")[0]
     assert first.first_period == pytest.approx(period, rel=0.005)
-    assert first.first_trough == pytest.approx(trough, rel=0.015)
+    assert first.first_trough == pytest.approx(trough, rel=0.025)
 
 
 def test_a_mesh_made_at_equilibrium_starts_from_the_release(tmp_path):
