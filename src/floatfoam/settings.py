@@ -52,15 +52,15 @@ MESH_MOTIONS = ("auto", "laplacian", "distances", "layered")
 MOTION_DIFFUSIVITIES = {"quadratic": "1/d²", "linear": "1/d"}
 
 
-def time_scheme_coefficient(scheme: str, key: str = "run.time_scheme") -> float | None:
-    """ψ of a time scheme "CrankNicolson ψ", None for "Euler"; anything else refused in one
-    line naming the setting ``key``."""
+def time_scheme_coefficient(scheme: str, key: str = "run.time_scheme", *,
+                            auto: bool = False) -> float | None:
+    """ψ of a time scheme "CrankNicolson ψ", None for "Euler" (and for "auto" where ``auto``
+    allows it); anything else refused in one line naming the setting ``key``."""
     words = scheme.split()
-    if words == ["Euler"]:
+    if words == ["Euler"] or (auto and words == ["auto"]):
         return None
-    valid = 'valid: "Euler" or "CrankNicolson ψ" with 0 ≤ ψ ≤ 1, e.g. "CrankNicolson 0.9"'
-    if key == "run.interface_time_scheme":
-        valid = valid.replace('valid: "Euler"', 'valid: "auto", "Euler"')
+    valid = ('valid: ' + ('"auto", ' if auto else '') +
+             '"Euler" or "CrankNicolson ψ" with 0 ≤ ψ ≤ 1, e.g. "CrankNicolson 0.9"')
     if len(words) != 2 or words[0] != "CrankNicolson":
         raise InputError(f"{key} = {scheme!r}: {valid}")
     try:
@@ -158,8 +158,8 @@ class RunSettings:
 
     def check(self) -> None:
         time_scheme_coefficient(self.time_scheme)
-        if self.interface_time_scheme != "auto":
-            time_scheme_coefficient(self.interface_time_scheme, "run.interface_time_scheme")
+        time_scheme_coefficient(self.interface_time_scheme, "run.interface_time_scheme",
+                                auto=True)
         if self.mesh_motion not in MESH_MOTIONS:
             raise InputError(f"run.mesh_motion = {self.mesh_motion!r}: valid is one of "
                              f"{', '.join(MESH_MOTIONS)}")
