@@ -18,7 +18,7 @@ tests/cfd/test_cfd.py): the step and the measured changes it makes, in one place
 # own step → this one): cylinder_heave 338 → 187 steps, T_d 0.6244 → 0.6270 s (Cummins 0.6224 s:
 # +0.32 → +0.74 %), fitted level −0.38 mm both, ζ 0.164 → 0.173; at this step on the layered
 # motion, 0.6267 s (+0.69 %), level −0.38 mm, 187 steps, and with the interface on
-# Crank–Nicolson as well (the defaults) 0.6188 s (−0.58 %), level −0.09 mm. On the spheres' wedges
+# Crank–Nicolson as well (the defaults) 0.6212 s (−0.19 %), level −0.40 mm. On the spheres' wedges
 # (1.7 s), 2 ranks, relaxation 0.7: sphere (10 mm) 356 → 192 steps, 30.9 → 16.4 s, T_d
 # +0.13 % of Cummins' both, level −0.26 mm both; sphere_25mm 358 → 194 steps, 26.0 → 18.6 s,
 # T_d +0.03 → +0.02 %, level −0.42 → −0.44 mm; sphere_50mm 420 → 230 steps, T_d −1.52 →

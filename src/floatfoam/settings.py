@@ -145,9 +145,10 @@ class RunSettings:
     time_scheme: str = spec("Euler", kind=str, doc="the time derivatives' scheme but the "
                              "interface's (run.interface_time_scheme): Euler (first order), "
                              "or \"CrankNicolson ψ\" with 0 ≤ ψ ≤ 1 (second order at ψ = 1)")
-    # the interface's advection carries the first-order step's error of a heave's period and
-    # damping, and Crank–Nicolson for it alone takes it out; a roll's period it moves and
-    # makes hang on the step (docs/studies/time-step.md)
+    # Crank–Nicolson for the interface alone takes three quarters of the first-order step's
+    # error out of a heave's period (floatfoam's interFoam keeps its flux's geometric
+    # conservation on the moving mesh: scripts/build_solver.sh); on a roll it measured as
+    # Euler, and the damping hangs on the step as much on either (docs/studies/time-step.md)
     interface_time_scheme: str = spec("auto", kind=str,
                                       doc="the interface's (α's) time scheme: \"CrankNicolson "
                                       "ψ\" with 0 ≤ ψ ≤ 1, Euler, or auto: Crank–Nicolson 0.9 "

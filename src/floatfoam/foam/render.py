@@ -181,8 +181,7 @@ def _solution(case: Case, run_dir: Path, mesh: RunMesh) -> None:
 
 
 #: the interface's time scheme that ``run.interface_time_scheme = "auto"`` takes for a body
-#: free in heave alone: its period and damping the same at the step and at half of it, on the
-#: layered motion and on the Laplacian (docs/studies/time-step.md)
+#: free in heave alone: a quarter of Euler's step error in the period (docs/studies/time-step.md)
 INTERFACE_CRANK_NICOLSON = "CrankNicolson 0.9"
 
 
@@ -190,7 +189,8 @@ def interface_scheme(case: Case, kind: str) -> str:
     """The interface's (α's) time scheme of a run of ``case`` in a domain of ``kind``:
     ``run.interface_time_scheme``, "auto" resolved to :data:`INTERFACE_CRANK_NICOLSON` for a
     body free in heave alone (:func:`floatfoam.plan.zone.heave_only`) and to Euler for a body
-    free to turn, whose roll period it moved by 0.6 % and made hang on the step."""
+    free to turn, whose roll it measured the same as Euler (not measured on a capsize or in
+    3D)."""
     scheme = case.settings.run.interface_time_scheme
     if scheme != "auto":
         return scheme
