@@ -88,8 +88,7 @@ def test_heave_period_does_not_hang_on_the_step(tmp_path):
     periods = [decay_dict(analyse_decay(*dof_series(read_motion(run.motion_csv), "heave")))
                ["period_mean"] for run in runs]
     # measured 0.62144 → 0.62118 s (−0.04 %); the interface on Euler 0.62397 → 0.62249 s
-    # (−0.24 %): 0.05 % is a fifth of that. At make test's larger step (tests/steps.py) the
-    # halved step moves either more (docs/studies/time-step.md)
+    # (−0.24 %): 0.05 % is a fifth of that (docs/studies/time-step.md)
     assert periods[1] == pytest.approx(periods[0], rel=5e-4)
     for run in runs:
         # interFoam's "Max(alpha.water) = …" after each α solve; measured ≤ 1 + 5e-6, where

@@ -50,8 +50,8 @@ def test_section_heave(tmp_path, name):
     Flat sections radiate strongly (Cummins: ζ = 0.22 for the ellipse): the record leaves the
     noise after ~1.5 cycles, too few for the decay fit, so both periods are timed by their
     first four extrema. Measured on make test's records and step (FAST_STEP): ellipse CFD
-    0.767 s against Cummins' 0.763 s (+0.5 %), box +0.16 %, parabola +0.20 %. On the finer levels (`make
-    validate`, relaxation 1.0) the decay fit's T_d moves by −0.8, −0.6 and −0.5 % from
+    0.767 s against Cummins' 0.763 s (+0.5 %), box +0.16 %, parabola +0.20 %. On the finer
+    levels (`make validate`, relaxation 1.0) the decay fit's T_d moves by −0.8, −0.6 and −0.5 % from
     coarse to fine (ellipse, box, parabola) and halving the step by 0.3, 0.4 and 0.1 %;
     the fine T_d is 0.05 % (box) and 0.6 % (parabola) from Cummins' (the ellipse's 1.5 fitted
     cycles are not its whole-record fit). The coarse level's 0.5 % is thus no luck of the
