@@ -58,8 +58,8 @@ def test_cylinder_heave_coarse_decays_with_added_mass(tmp_path):
     # measured 0.6212 s (−0.19 %). On the whole 3.2 s record at the case's step the O-grid's
     # levels converge to 0.4 % below Cummins' period (coarse 0.6191, fine 0.6182 s against
     # 0.6205 s, U_num 0.77 %: README), so 1.5 % — twice that U_num — is the mesh or the
-    # coupling gone wrong, not the level (the O-grid with a 0.15 m square ran +2.8 % here: docs/studies/cases/cylinder_heave.md);
-    # issue 12's criterion is 3 %.
+    # coupling gone wrong, not the level (the O-grid with a 0.15 m square ran +2.8 % here:
+    # docs/studies/cases/cylinder_heave.md); issue 12's criterion is 3 %.
     series = decay_series(case, "cummins", nonlinear_restoring=True, duration=1.6)
     cummins = analyse_decay(series["time"], series["z"]).summary()["period_mean"]
     assert decay["period_mean"] == pytest.approx(cummins, rel=0.015)
