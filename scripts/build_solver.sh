@@ -88,20 +88,29 @@ libs="-lfiniteVolume -lfvOptions -lmeshTools -lsampling -ldynamicMesh -ldynamicF
 # (the geometric conservation law): water cells overfill (α to 1.0015 on flume_section_roll)
 # by an error of the step's first order. floatfoam's interFoam makes the last step's flux
 # relative to this step's motion: the copy of VoF/ it compiles against gets these lines after
-# the blend.
+# the blend (on a moving wall the blended flux is then not zero: the conservation law asks for
+# it), and keeps the last step's flux from the first step on, whose Euler step would otherwise
+# leave the second with this step's flux for the last one.
+KEEP='            phi.oldTime();'
 GCL='        if (mesh.moving())\
         {\
             phiCN.ref() += (1.0 - cnCoeff)*(mesh.phi().oldTime() - mesh.phi());\
         }'
+CN='isType<fv::CrankNicolsonDdtScheme<scalar>>(ddtAlpha))'
 BLEND='phiCN = cnCoeff\*phi + (1.0 - cnCoeff)\*phi.oldTime();'
 VOF=$OUT/VoF
 rm -rf "$VOF" && cp -r "$SRC/applications/solvers/multiphase/VoF" "$VOF"
-sed -i "/$BLEND/a\\
+sed -i -e "/$CN/{n;a\\
+$KEEP
+}" -e "/$BLEND/a\\
 $GCL" "$VOF/alphaEqn.H"
-grep -q 'mesh.phi().oldTime() - mesh.phi()' "$VOF/alphaEqn.H" ||
-  { echo "build_solver: alphaEqn.H has no Crank–Nicolson blend to correct" >&2; exit 1; }
-OBJECT_ID="$FLAGS $(sha256sum < "$VOF/alphaEqn.H" | cut -c1-16)"
-OFLAGS=$OUT/.interFoam.o.flags  # the flags and the alphaEqn.H interFoam.o was compiled with
+if [ "$(grep -c 'mesh.phi().oldTime() - mesh.phi()' "$VOF/alphaEqn.H")" != 1 ] ||
+   [ "$(grep -c '^            phi.oldTime();$' "$VOF/alphaEqn.H")" != 1 ]; then
+  echo "build_solver: alphaEqn.H has no Crank–Nicolson blend to correct" >&2
+  exit 1
+fi
+OBJECT_ID="$FLAGS $(cat "$VOF"/*.H | sha256sum | cut -c1-16)"
+OFLAGS=$OUT/.interFoam.o.flags  # the flags and the VoF/ interFoam.o was compiled with
 if [ ! -f "$OUT/interFoam.o" ] || [ "$(cat "$OFLAGS" 2>/dev/null)" != "$OBJECT_ID" ]; then
   app=$(realpath "$SRC/applications/solvers/multiphase/interFoam")
   vof=$(realpath "$VOF")

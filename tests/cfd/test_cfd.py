@@ -91,7 +91,7 @@ def test_heave_period_does_not_hang_on_the_step(tmp_path):
     assert periods[1] == pytest.approx(periods[0], rel=5e-4)
     for run in runs:
         # interFoam's "Max(alpha.water) = …" after each α solve; measured ≤ 1 + 5e-6, where
-        # v1912's own blend of the fluxes overfilled cells to 1.0005 over the 3.2 s record
+        # v1912's own blend of the fluxes overfills cells to 1.0005 over the 3.2 s record
         filled = [float(line.rsplit("=", 1)[1]) for line in
                   (run.run_dir / "log.interFoam").read_text().splitlines()
                   if line.startswith("Phase-1 volume fraction")]
