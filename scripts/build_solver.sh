@@ -82,15 +82,10 @@ libs="-lfiniteVolume -lfvOptions -lmeshTools -lsampling -ldynamicMesh -ldynamicF
       -limmiscibleIncompressibleTwoPhaseMixture -lturbulenceModels
       -lincompressibleTurbulenceModels -lwaveModels -lsixDoFRigidBodyMotion -lforces
       -lOpenFOAM -ldl -lm"
-# The interface's Crank–Nicolson flux on a moving mesh (docs/studies/time-step.md): v1912's
-# alphaEqn.H blends this step's flux, relative to this step's mesh motion, with the last step's,
-# relative to the last step's, so a cell's fluxes no longer sum to the volume its faces sweep
-# (the geometric conservation law): water cells overfill (α to 1.0015 on flume_section_roll)
-# by an error of the step's first order. floatfoam's interFoam makes the last step's flux
-# relative to this step's motion: the copy of VoF/ it compiles against gets these lines after
-# the blend (on a moving wall the blended flux is then not zero: the conservation law asks for
-# it), and keeps the last step's flux from the first step on, whose Euler step would otherwise
-# leave the second with this step's flux for the last one.
+# The interface's Crank–Nicolson flux on a moving mesh keeps the geometric conservation law
+# (docs/openfoam-v1912.md, item 5): the copy of VoF/ interFoam compiles against makes the last
+# step's flux relative to this step's mesh motion after v1912's blend, and keeps the last
+# step's flux from the first step on.
 KEEP='            phi.oldTime();'
 GCL='        if (mesh.moving())\
         {\
