@@ -7,9 +7,10 @@
 # non-orthogonal cell and water at rest blows up. The loop lives in the solver executable, so
 # recompiling the solver alone (against Debian's libraries) with -fno-tree-vectorize cures it.
 #
-# floatfoam's own motion solver (src/solver/*.C: the layered six-DoF motion, docs/morphing.md)
-# is compiled with the same flags and linked into the same executable, so that every run of
-# floatfoam's interFoam has it without a library to find at run time.
+# floatfoam's own C++ (src/solver/*.C: the layered six-DoF motion, docs/morphing.md, and the
+# body's velocity condition bodyVelocity, docs/openfoam-v1912.md) is compiled with the same
+# flags and linked into the same executable, so that every run of floatfoam's interFoam has it
+# without a library to find at run time.
 #
 # Output: build/solver/bin/interFoam. Idempotent: does nothing when the binary is there and
 # was built from the same flags and sources (src/solver/); a change to those sources alone
@@ -104,6 +105,22 @@ if [ "$(grep -c 'mesh.phi().oldTime() - mesh.phi()' "$VOF/alphaEqn.H")" != 1 ] |
   echo "build_solver: alphaEqn.H has no Crank–Nicolson blend to correct" >&2
   exit 1
 fi
+# floatfoam's bodyVelocity (src/solver/) takes the body's velocity from the Laplacian's
+# point-displacement condition, whose six-DoF motion v1912 keeps private: it is compiled again
+# from Debian's source under the name bodySixDoFRigidBodyDisplacement, with an accessor.
+PPF=$SRC/src/sixDoFRigidBodyMotion/pointPatchFields/derived/sixDoFRigidBodyDisplacement
+BODY=$OUT/bodyDisplacement
+rm -rf "$BODY" && mkdir -p "$BODY"
+for f in "$PPF"/sixDoFRigidBodyDisplacementPointPatchVectorField.[CH]; do
+  sed -e 's/sixDoFRigidBodyDisplacement/bodySixDoFRigidBodyDisplacement/g' \
+      -e '/TypeName("bodySixDoFRigidBodyDisplacement");/a\
+    const sixDoFRigidBodyMotion\& motion() const { return motion_; }' \
+      "$f" > "$BODY/body$(basename "$f" | sed 's/^s/S/')"
+done
+if [ "$(grep -c 'motion() const { return motion_; }' "$BODY"/*.H)" != 1 ]; then
+  echo "build_solver: sixDoFRigidBodyDisplacement has no TypeName to add the accessor after" >&2
+  exit 1
+fi
 OBJECT_ID="$FLAGS $(cat "$VOF"/*.H | sha256sum | cut -c1-16)"
 OFLAGS=$OUT/.interFoam.o.flags  # the flags and the VoF/ interFoam.o was compiled with
 if [ ! -f "$OUT/interFoam.o" ] || [ "$(cat "$OFLAGS" 2>/dev/null)" != "$OBJECT_ID" ]; then
@@ -116,11 +133,11 @@ if [ ! -f "$OUT/interFoam.o" ] || [ "$(cat "$OFLAGS" 2>/dev/null)" != "$OBJECT_I
   mv -f "$OUT/interFoam.o.tmp" "$OUT/interFoam.o" && echo "$OBJECT_ID" > "$OFLAGS"
 fi
 objects=("$OUT/interFoam.o")
-for source in "${OWN[@]}"; do
+for source in "$BODY"/*.C "${OWN[@]}"; do
   object=$OUT/$(basename "${source%.C}").o
   echo "build_solver: compiling $source"
   # shellcheck disable=SC2086
-  g++ $FLAGS $includes -c "$source" -o "$object"
+  g++ $FLAGS -I"$BODY" $includes -c "$source" -o "$object"
   objects+=("$object")
 done
 # shellcheck disable=SC2086

@@ -191,7 +191,7 @@ def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, mo
         assert "displacementLaplacian" in text
         assert diffusivity[case.settings.run.motion_diffusivity] in \
             [line.strip() for line in text.splitlines()]
-        assert body["type"] == "sixDoFRigidBodyDisplacement" and "innerDistance" not in body
+        assert body["type"] == "bodySixDoFRigidBodyDisplacement" and "innerDistance" not in body
         assert body["mass"] == pytest.approx(case.mass * mesh.share)
     else:
         assert body is None and "sixDoFRigidBodyMotionCoeffs" in text
@@ -202,6 +202,27 @@ def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, mo
             assert coeffs["sixDoFRigidBodyMotionCoeffs"]["layerBandExpansion"] == \
                 case.settings.run.layer_band
     assert "motion" not in functions  # one source of the motion: the log (foam.motionlog)
+
+
+@pytest.mark.parametrize("solver, velocity, displacement", [
+    (None, "bodyVelocity", "bodySixDoFRigidBodyDisplacement"),  # floatfoam's (make setup)
+    ("/usr/bin/interFoam", "movingWallVelocity", "sixDoFRigidBodyDisplacement"),  # Debian's
+])
+def test_the_body_conditions_follow_the_solver(tmp_path, solver, velocity, displacement):
+    """The body's velocity is floatfoam's bodyVelocity (the rigid body's at the step's end)
+    and the Laplacian's body condition the copy of v1912's that lets it read the motion, where
+    the interFoam to run has them; on another interFoam (run.solver) v1912's own."""
+    from floatfoam.foam.patches import boundary_conditions
+    from floatfoam.layout import COMMON_DIR
+    from floatfoam.plan.stamps import has_body_velocity
+
+    chosen = (f'run.solver="{solver}"',) if solver else ()
+    case, state, mesh = planned("cylinder_heave", ('run.mesh_motion="laplacian"', *chosen))
+    own = has_body_velocity(case)
+    shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
+    render._control(case, tmp_path, mesh, 1.0)
+    assert render._motion(case, tmp_path, mesh, state, own)["type"] == displacement
+    assert boundary_conditions("U", mesh.patches, own)["body"]["type"] == velocity
 
 
 def test_the_layered_motion_is_refused_for_a_body_that_turns():

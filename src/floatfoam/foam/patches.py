@@ -31,7 +31,7 @@ _WALL = {"U": {"type": "noSlip"}, "p_rgh": {"type": "fixedFluxPressure", "value"
          "alpha.water": {"type": "zeroGradient"},
          "pointDisplacement": {"type": "fixedValue", "value": _ZERO}}
 _BY_PATCH = {
-    "body": {"U": {"type": "movingWallVelocity", "value": _ZERO},
+    "body": {"U": {"type": "bodyVelocity", "value": _ZERO},
              "p_rgh": {"type": "fixedFluxPressure", "value": 0.0},
              "alpha.water": {"type": "zeroGradient"},
              "pointDisplacement": {"type": "calculated", "value": _ZERO}},
@@ -51,24 +51,35 @@ _FIELD_SPEC = {  # class, dimensions (mass, length, time), internal value
 }
 
 
-def boundary_conditions(field: str, patches) -> dict:
+#: the body's velocity on an interFoam without floatfoam's bodyVelocity (``run.solver``):
+#: v1912's, the wall's velocity over the step
+STOCK_BODY_VELOCITY = {"type": "movingWallVelocity", "value": _ZERO}
+
+
+def boundary_conditions(field: str, patches, body_velocity: bool = True) -> dict:
     """The boundary conditions of ``field`` on ``patches`` (names of :data:`PATCH_TYPES`):
-    walls, body and atmosphere by role; empty, wedge and symmetry planes by their type."""
+    walls, body and atmosphere by role; empty, wedge and symmetry planes by their type. The
+    body's velocity is floatfoam's ``bodyVelocity`` (the rigid body's at the step's end,
+    src/solver/), or with ``body_velocity`` False :data:`STOCK_BODY_VELOCITY`."""
     out = {}
     for name in patches:
         if name in _BY_PATCH:
             out[name] = _BY_PATCH[name][field]
         else:
             out[name] = {"type": PATCH_TYPES[name]}
+    if field == "U" and "body" in out and not body_velocity:
+        out["body"] = STOCK_BODY_VELOCITY
     return out
 
 
-def write_initial_fields(folder, patches) -> None:
+def write_initial_fields(folder, patches, body_velocity: bool = True) -> None:
     """Initial fields in ``folder`` (``0.orig``): water and air at rest, the body unmoved; the
-    free surface is set afterwards by setAlphaField."""
+    free surface is set afterwards by setAlphaField. ``body_velocity``: as
+    :func:`boundary_conditions`."""
     from floatfoam.foam.dictionaries import write_field
 
     for name in FIELDS:
         cls, (mass, length, time), internal = _FIELD_SPEC[name]
         dims = FoamFile.DimensionSet(mass=mass, length=length, time=time)
-        write_field(folder / name, cls, dims, internal, boundary_conditions(name, patches))
+        write_field(folder / name, cls, dims, internal,
+                    boundary_conditions(name, patches, body_velocity))

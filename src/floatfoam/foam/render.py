@@ -24,6 +24,7 @@ from floatfoam.foam.patches import write_initial_fields
 from floatfoam.layout import COMMON_DIR
 from floatfoam.plan.record import RunRecord
 from floatfoam.plan.runplan import RunPlan
+from floatfoam.plan.stamps import has_body_velocity
 from floatfoam.plan.zone import LAYERED_SOLVER, free_names, heave_only
 from floatfoam.settings import time_scheme_coefficient
 
@@ -84,8 +85,9 @@ def render(plan: RunPlan, mesh: RunMesh) -> RunRecord:
     _control(case, run_dir, mesh, end_time)
     _solution(case, run_dir, mesh)
     _fluid(case, run_dir)
-    body = _motion(case, run_dir, mesh, state)
-    write_initial_fields(run_dir / "0.orig", mesh.patches)
+    own = has_body_velocity(case)  # floatfoam's interFoam, or another (run.solver)
+    body = _motion(case, run_dir, mesh, state, own)
+    write_initial_fields(run_dir / "0.orig", mesh.patches, body_velocity=own)
     if body is not None:  # the Laplacian's body: its displacement from the six-DoF equations
         field = FoamFile(run_dir / "0.orig" / "pointDisplacement")
         field["boundaryField"]["body"] = body
@@ -241,7 +243,8 @@ def constraints(case: Case, mesh: RunMesh, cog: list[float]) -> dict:
     return out
 
 
-def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | None:
+def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict,
+            own: bool = True) -> dict | None:
     """Six-DoF body: the domain holds the share s of the body (a slab t/L, a wedge θ/360°),
     mass s·M and inertia s·M·k² about the body's axes; its initial orientation is its attitude
     at release, so the reported orientation is the body's attitude. A mesh made at
@@ -252,9 +255,12 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | Non
     distances, or ``displacementLaplacian`` (its diffusivity :data:`LAPLACIAN_DIFFUSIVITY` of
     ``run.motion_diffusivity``) whose body
     patch carries the same six-DoF dictionary as its point displacement condition
-    (``sixDoFRigidBodyDisplacement``, v1912's src/sixDoFRigidBodyMotion/pointPatchFields):
-    then the body's condition is returned, for the caller to write into pointDisplacement
-    (the condition takes g from the solver, which registers it)."""
+    (``bodySixDoFRigidBodyDisplacement``: v1912's ``sixDoFRigidBodyDisplacement`` of
+    src/sixDoFRigidBodyMotion/pointPatchFields, which floatfoam's interFoam has again with an
+    accessor to the motion for the body's velocity condition; the original where ``own`` is
+    False, on another interFoam): then the body's condition is returned, for the caller to
+    write into pointDisplacement (the condition takes g from the solver, which registers
+    it)."""
     if case.settings.run.static_body:  # body held at its release position (still-water test)
         write_dict(run_dir / "constant" / "dynamicMeshDict", {"dynamicFvMesh": "staticFvMesh"})
         return None
@@ -298,7 +304,8 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict) -> dict | Non
         })
         body = {k: v for k, v in coeffs.items()
                 if k not in ("patches", "innerDistance", "outerDistance")}
-        return {"type": "sixDoFRigidBodyDisplacement", **body, "value": [0.0, 0.0, 0.0]}
+        condition = "bodySixDoFRigidBodyDisplacement" if own else "sixDoFRigidBodyDisplacement"
+        return {"type": condition, **body, "value": [0.0, 0.0, 0.0]}
     write_dict(run_dir / "constant" / "dynamicMeshDict", {
         "dynamicFvMesh": "dynamicMotionSolverFvMesh",
         "motionSolverLibs": ['"libsixDoFRigidBodyMotion.so"'],

@@ -143,6 +143,21 @@ def solver_path(case: Case, check: bool = True) -> Path:
     return path
 
 
+#: floatfoam's velocity condition of the body (src/solver/): the rigid body's velocity at the
+#: step's end, where v1912's movingWallVelocity gives the wall's over the step, half a step
+#: late (docs/openfoam-v1912.md)
+BODY_VELOCITY = "bodyVelocity"
+
+
+def has_body_velocity(case: Case) -> bool:
+    """Whether the interFoam to run (:func:`solver_path`) has floatfoam's
+    :data:`BODY_VELOCITY`; another build (``run.solver``) gives the body v1912's own
+    conditions instead (``movingWallVelocity``, ``sixDoFRigidBodyDisplacement``)."""
+    path = solver_path(case, check=False)
+    with open(path, "rb") as binary:
+        return BODY_VELOCITY.encode() in binary.read()
+
+
 def check_layered_solver(case: Case) -> None:
     """InputError when the interFoam to run (:func:`solver_path`) lacks floatfoam's layered
     motion, which the run's mesh takes: another build (``run.solver``), or floatfoam's own
