@@ -22,7 +22,8 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     """Hash of what a run depends on: the case file, the values it resolves to with the
     defaults (a changed default makes every run made at the former one another run's) and the
     mesh motion they resolve to (:func:`_resolved_motion`), the level, the time-step divisor
-    and morphing factor of a study's run, the shared dictionaries and the solver binary. Not
+    and morphing factor of a study's run, the shared dictionaries, the body's velocity
+    condition (:data:`BODY_VELOCITY`) and the solver binary. Not
     the case's words ([case] title, description, and the name of the case it extends: its
     tables are in), nor its [reference] measurements: adding a measurement must not make a
     finished run look foreign; nor run.end_time, which says only how far the run goes (its
@@ -49,6 +50,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     for path in sorted(layout.COMMON_DIR.rglob("*")):
         if path.is_file():
             digest.update(path.read_bytes())
+    digest.update(BODY_VELOCITY.encode())
     digest.update(str(solver_path(case, check=False)).encode())
     return digest.hexdigest()[:16]
 
