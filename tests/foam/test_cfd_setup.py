@@ -7,6 +7,7 @@ import shutil
 
 import numpy as np
 import pytest
+from foamlib import FoamFile
 
 from floatfoam.bodies.geometry import rotation
 from floatfoam.case import load_case
@@ -223,6 +224,43 @@ def test_the_body_conditions_follow_the_solver(tmp_path, solver, velocity, displ
     render._control(case, tmp_path, mesh, 1.0)
     assert render._motion(case, tmp_path, mesh, state, own)["type"] == displacement
     assert boundary_conditions("U", mesh.patches, own)["body"]["type"] == velocity
+
+
+@pytest.mark.parametrize("name, free", [
+    ("cylinder_heave", ["heave"]),
+    ("flume_section_roll", ["heave", "roll", "sway"]),  # heeled: sway and roll with heave
+])
+def test_the_coupling_is_compensated_by_half_the_added_mass(tmp_path, name, free):
+    """The six-DoF restraint addedMassCompensation (src/solver/) takes half the body's added
+    mass at infinite frequency (Newmark passes half of a change of the acceleration on to the
+    body's faces' velocity at the step's end), × the domain's share of the body, in the DoFs
+    it is free in and no other, on either mesh motion; a body held still takes none."""
+    from floatfoam.layout import COMMON_DIR
+    from floatfoam.plan.zone import free_names
+    from floatfoam.potential.coupling import infinite_frequency_added_mass
+
+    case, state, mesh = planned(name)
+    assert free_names(case, mesh.kind) == free
+    eq = equilibrium(case)
+    compensation = render._compensation(case, eq, mesh)
+    matrix = np.block([[np.reshape(compensation[a], (3, 3)), np.reshape(compensation[b], (3, 3))]
+                       for a, b in (("linear", "linearAngular"), ("angularLinear", "angular"))])
+    axes = [{"surge": 0, "sway": 1, "heave": 2, "roll": 3, "pitch": 4}[n] for n in free]
+    a_inf = infinite_frequency_added_mass(case, eq, free)
+    assert matrix[np.ix_(axes, axes)] == pytest.approx(0.5 * mesh.share * a_inf, rel=1e-12)
+    held = [i for i in range(6) if i not in axes]
+    assert not matrix[held].any() and not matrix[:, held].any()
+    assert matrix[2, 2] > 0.0
+    shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
+    render._control(case, tmp_path, mesh, 1.0)
+    body = render._motion(case, tmp_path, mesh, state, True, compensation)
+    coeffs = body if body is not None else \
+        FoamFile(tmp_path / "constant" / "dynamicMeshDict")["sixDoFRigidBodyMotionCoeffs"]
+    restraint = coeffs["restraints"]["addedMass"]
+    assert restraint["sixDoFRigidBodyMotionRestraint"] == "addedMassCompensation"
+    assert np.ravel(restraint["linear"]) == pytest.approx(compensation["linear"])
+    held_still = load_case(name, ["run.static_body=true"])
+    assert render._compensation(held_still, eq, mesh) is None
 
 
 def test_the_layered_motion_is_refused_for_a_body_that_turns():

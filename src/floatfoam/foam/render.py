@@ -86,7 +86,8 @@ def render(plan: RunPlan, mesh: RunMesh) -> RunRecord:
     _solution(case, run_dir, mesh)
     _fluid(case, run_dir)
     own = has_body_velocity(case)  # floatfoam's interFoam, or another (run.solver)
-    body = _motion(case, run_dir, mesh, state, own)
+    compensation = _compensation(case, plan.equilibrium, mesh) if own else None
+    body = _motion(case, run_dir, mesh, state, own, compensation)
     write_initial_fields(run_dir / "0.orig", mesh.patches, body_velocity=own)
     if body is not None:  # the Laplacian's body: its displacement from the six-DoF equations
         field = FoamFile(run_dir / "0.orig" / "pointDisplacement")
@@ -243,8 +244,34 @@ def constraints(case: Case, mesh: RunMesh, cog: list[float]) -> dict:
     return out
 
 
+def _compensation(case: Case, equilibrium, mesh: RunMesh) -> dict | None:
+    """The compensating mass of the six-DoF restraint ``addedMassCompensation``
+    (:func:`floatfoam.potential.coupling.compensating_mass`: half the body's added mass at
+    infinite frequency in the DoFs it is free in, × the domain's share); None for a body held
+    still, or, with one line printed, where the potential flow cannot be had (the correctors
+    then take the fluid's force as it comes). A body whose correctors would diverge without
+    it (:func:`floatfoam.potential.coupling.coupling_gain` above 1) is named in one line."""
+    if case.settings.run.static_body:
+        return None
+    from floatfoam.errors import ComputationError
+    from floatfoam.potential.coupling import compensating_mass, coupling_gain
+
+    free = free_names(case, mesh.kind)
+    try:
+        compensation = compensating_mass(case, equilibrium, free, mesh.share)
+    except ComputationError as err:
+        print(f"[{case.name}] no added-mass compensation of the coupling: {err}", flush=True)
+        return None
+    gain = coupling_gain(case, equilibrium, free)
+    if gain > 1.0:  # uncompensated, the correctors would diverge (docs/coupling.md)
+        print(f"[{case.name}] a light body: its added mass at infinite frequency is "
+              f"{2.0 * gain:.3g} × its own; the coupling's correctors are compensated",
+              flush=True)
+    return compensation
+
+
 def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict,
-            own: bool = True) -> dict | None:
+            own: bool = True, compensation: dict | None = None) -> dict | None:
     """Six-DoF body: the domain holds the share s of the body (a slab t/L, a wedge θ/360°),
     mass s·M and inertia s·M·k² about the body's axes; its initial orientation is its attitude
     at release, so the reported orientation is the body's attitude. A mesh made at
@@ -260,7 +287,8 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict,
     accessor to the motion for the body's velocity condition; the original where ``own`` is
     False, on another interFoam): then the body's condition is returned, for the caller to
     write into pointDisplacement (the condition takes g from the solver, which registers
-    it)."""
+    it). ``compensation`` (:func:`_compensation`), where given, becomes the six-DoF restraint
+    ``addedMassCompensation`` of floatfoam's interFoam."""
     if case.settings.run.static_body:  # body held at its release position (still-water test)
         write_dict(run_dir / "constant" / "dynamicMeshDict", {"dynamicFvMesh": "staticFvMesh"})
         return None
@@ -284,6 +312,9 @@ def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict,
         "solver": {"type": "Newmark"},
         "constraints": constraints(case, mesh, cog),
     }
+    if compensation is not None:  # floatfoam's restraint (src/solver/): the coupling
+        coeffs["restraints"] = {"addedMass": {
+            "sixDoFRigidBodyMotionRestraint": "addedMassCompensation", **compensation}}
     offset = np.asarray(state.get("mesh_offset", (0.0, 0.0, 0.0)), dtype=float)
     if np.any(offset):  # the mesh holds the body at equilibrium (floatfoam.foam.meshpose):
         made = [c - o for c, o in zip(cog, offset.tolist(), strict=True)]  # G there

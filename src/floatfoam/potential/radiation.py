@@ -233,7 +233,7 @@ def radiation_coefficients(case, eq=None, *, panels: int | None = None, omegas=N
                                 omega_max_nd=opts.omega_max or OMEGA_MAX_ND,
                                 count=opts.frequencies or FREQUENCIES)
     omegas = np.asarray(omegas, dtype=float)
-    if not body.is_section and math.isfinite(depth):
+    if not body.is_section and math.isfinite(depth) and omegas.size:
         # Capytaine's finite-depth Green function (Delhommeau) needs kh ≥ 0.1
         lowest = math.sqrt(case.g * MIN_KH / depth * math.tanh(MIN_KH))
         if omegas[0] < lowest:
