@@ -155,8 +155,9 @@ def test_lab_sphere_first_cycle_against_the_basin(tmp_path):
     The case's grid study (`floatfoam validate lab_sphere`, its README; the body's wall on
     movingWallVelocity) puts the coarse, medium and fine levels +0.24, −0.12 and +0.01 % from
     the basin's first period and their troughs 0.55 % and 0.18 % shallower than its and 0.02 %
-    deeper; this test's run at the defaults measured the coarse level's +0.29 % and +0.32 %. First period within 0.5 %: the levels'
-    spread 0.36 %, the halved step's 0.02 %, the basin's ± 0.07 %, rounded up. Trough within
+    deeper; this test's run at the defaults measured the coarse level's +0.29 % and +0.32 %.
+    First period within 0.5 %: the levels' spread 0.36 %, the halved step's 0.02 %, the
+    basin's ± 0.07 %, rounded up. Trough within
     2 %: the coarse level's 0.6 %, the halved step's 0.6 % (at the medium level), the basin's
     ± 0.4 %, their sum 1.6 % rounded up."""
     from floatfoam import layout
