@@ -7,8 +7,9 @@
 # non-orthogonal cell and water at rest blows up. The loop lives in the solver executable, so
 # recompiling the solver alone (against Debian's libraries) with -fno-tree-vectorize cures it.
 #
-# floatfoam's own C++ (src/solver/*.C: the layered six-DoF motion, docs/morphing.md, and the
-# body's velocity condition bodyVelocity, docs/openfoam-v1912.md) is compiled with the same
+# floatfoam's own C++ (src/solver/*.C: the layered six-DoF motion, docs/morphing.md, the
+# body's velocity condition bodyVelocity, docs/openfoam-v1912.md, and the coupling's restraint
+# addedMassCompensation, docs/coupling.md) is compiled with the same
 # flags and linked into the same executable, so that every run of floatfoam's interFoam has it
 # without a library to find at run time.
 #

@@ -16,7 +16,11 @@
     (M the body's mass and inertia in earth axes, F the force and moment on it, q_last the
     acceleration the corrector before took): the same acceleration once the correctors agree
     (q = q_last: M q = F), reached in one corrector where A is the fluid's answer. It returns
-    the force and moment M q - F, at the centre of rotation.
+    the force and moment M q - F, at the centre of rotation. q_last is the acceleration this
+    restraint gave (v1912 relaxes the acceleration after the restraints: with
+    accelerationRelaxation below 1 the body took less of it); the first corrector of a run,
+    and of a run resumed, is not compensated. With one corrector a step the compensation
+    blends the step's acceleration with the last step's, as a relaxation does.
 \*---------------------------------------------------------------------------*/
 
 #include "sixDoFRigidBodyMotionRestraint.H"

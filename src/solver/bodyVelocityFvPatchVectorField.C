@@ -7,7 +7,8 @@
     (dynamicMeshDict: sixDoFRigidBodyMotion or floatfoam's layeredSixDoFRigidBodyMotion), or
     from the patch's point-displacement condition bodySixDoFRigidBodyDisplacement (the
     Laplacian's: v1912's sixDoFRigidBodyDisplacement with an accessor, compiled by
-    scripts/build_solver.sh). On a mesh that does not move (a body held still) it is zero.
+    scripts/build_solver.sh). Until the mesh moves (a body held still, or a restart before its
+    first motion) it keeps the value it has, as movingWallVelocity does.
 \*---------------------------------------------------------------------------*/
 
 #include "fixedValueFvPatchFields.H"
@@ -123,9 +124,8 @@ public:
         {
             return;
         }
-        if (!internalField().mesh().moving())  // a body held still (a static mesh)
+        if (!internalField().mesh().moving())  // not moved yet, or a body held still
         {
-            vectorField::operator=(vector::zero);
             fixedValueFvPatchVectorField::updateCoeffs();
             return;
         }

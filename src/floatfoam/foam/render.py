@@ -24,7 +24,7 @@ from floatfoam.foam.patches import write_initial_fields
 from floatfoam.layout import COMMON_DIR
 from floatfoam.plan.record import RunRecord
 from floatfoam.plan.runplan import RunPlan
-from floatfoam.plan.stamps import has_body_velocity
+from floatfoam.plan.stamps import COMPENSATION, has_body_velocity, solver_has
 from floatfoam.plan.zone import LAYERED_SOLVER, free_names, heave_only
 from floatfoam.settings import time_scheme_coefficient
 
@@ -86,7 +86,8 @@ def render(plan: RunPlan, mesh: RunMesh) -> RunRecord:
     _solution(case, run_dir, mesh)
     _fluid(case, run_dir)
     own = has_body_velocity(case)  # floatfoam's interFoam, or another (run.solver)
-    compensation = _compensation(case, plan.equilibrium, mesh) if own else None
+    compensation = _compensation(case, plan.equilibrium, mesh) \
+        if own and solver_has(case, COMPENSATION) else None
     body = _motion(case, run_dir, mesh, state, own, compensation)
     write_initial_fields(run_dir / "0.orig", mesh.patches, body_velocity=own)
     if body is not None:  # the Laplacian's body: its displacement from the six-DoF equations
@@ -259,7 +260,7 @@ def _compensation(case: Case, equilibrium, mesh: RunMesh) -> dict | None:
     free = free_names(case, mesh.kind)
     try:
         compensation = compensating_mass(case, equilibrium, free, mesh.share)
-    except ComputationError as err:
+    except (ComputationError, InputError, ValueError) as err:  # the panels refuse the body
         print(f"[{case.name}] no added-mass compensation of the coupling: {err}", flush=True)
         return None
     gain = coupling_gain(case, equilibrium, free)

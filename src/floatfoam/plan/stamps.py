@@ -23,7 +23,8 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     defaults (a changed default makes every run made at the former one another run's) and the
     mesh motion they resolve to (:func:`_resolved_motion`), the level, the time-step divisor
     and morphing factor of a study's run, the shared dictionaries, the body's velocity
-    condition (:data:`BODY_VELOCITY`) and the solver binary. Not
+    condition and the coupling's compensation (:data:`BODY_VELOCITY`, :data:`COMPENSATION`)
+    and the solver binary. Not
     the case's words ([case] title, description, and the name of the case it extends: its
     tables are in), nor its [reference] measurements: adding a measurement must not make a
     finished run look foreign; nor run.end_time, which says only how far the run goes (its
@@ -50,7 +51,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     for path in sorted(layout.COMMON_DIR.rglob("*")):
         if path.is_file():
             digest.update(path.read_bytes())
-    digest.update(BODY_VELOCITY.encode())
+    digest.update(f"{BODY_VELOCITY} {COMPENSATION}".encode())
     digest.update(str(solver_path(case, check=False)).encode())
     return digest.hexdigest()[:16]
 
@@ -150,14 +151,26 @@ def solver_path(case: Case, check: bool = True) -> Path:
 #: late (docs/openfoam-v1912.md)
 BODY_VELOCITY = "bodyVelocity"
 
+#: floatfoam's six-DoF restraint that compensates the coupling's correctors by the body's
+#: added mass (src/solver/, docs/coupling.md)
+COMPENSATION = "addedMassCompensation"
+
+
+def solver_has(case: Case, name: str) -> bool:
+    """Whether the interFoam to run (:func:`solver_path`) has floatfoam's ``name``
+    (:data:`BODY_VELOCITY`, :data:`COMPENSATION`); another build (``run.solver``) may lack
+    them: the body then takes v1912's own conditions (``movingWallVelocity``,
+    ``sixDoFRigidBodyDisplacement``), uncompensated. A solver that is not there has none."""
+    path = solver_path(case, check=False)
+    if not path.is_file():
+        return False
+    with open(path, "rb") as binary:
+        return name.encode() in binary.read()
+
 
 def has_body_velocity(case: Case) -> bool:
-    """Whether the interFoam to run (:func:`solver_path`) has floatfoam's
-    :data:`BODY_VELOCITY`; another build (``run.solver``) gives the body v1912's own
-    conditions instead (``movingWallVelocity``, ``sixDoFRigidBodyDisplacement``)."""
-    path = solver_path(case, check=False)
-    with open(path, "rb") as binary:
-        return BODY_VELOCITY.encode() in binary.read()
+    """Whether the interFoam to run has floatfoam's :data:`BODY_VELOCITY`."""
+    return solver_has(case, BODY_VELOCITY)
 
 
 def check_layered_solver(case: Case) -> None:
