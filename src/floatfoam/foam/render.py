@@ -255,20 +255,24 @@ def _compensation(case: Case, equilibrium, mesh: RunMesh) -> dict | None:
     if case.settings.run.static_body:
         return None
     from floatfoam.errors import ComputationError
-    from floatfoam.potential.coupling import compensating_mass, coupling_gain
+    from floatfoam.potential.coupling import (
+        compensating_mass,
+        coupling_gain,
+        infinite_frequency_added_mass,
+    )
 
     free = free_names(case, mesh.kind)
     try:
-        compensation = compensating_mass(case, equilibrium, free, mesh.share)
+        a_inf = infinite_frequency_added_mass(case, equilibrium, free)
     except (ComputationError, InputError, ValueError) as err:  # the panels refuse the body
         print(f"[{case.name}] no added-mass compensation of the coupling: {err}", flush=True)
         return None
-    gain = coupling_gain(case, equilibrium, free)
+    gain = coupling_gain(case, a_inf, free)
     if gain > 1.0:  # uncompensated, the correctors would diverge (docs/coupling.md)
         print(f"[{case.name}] a light body: its added mass at infinite frequency is "
               f"{2.0 * gain:.3g} × its own; the coupling's correctors are compensated",
               flush=True)
-    return compensation
+    return compensating_mass(a_inf, free, mesh.share)
 
 
 def _motion(case: Case, run_dir: Path, mesh: RunMesh, state: dict,

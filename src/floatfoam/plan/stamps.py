@@ -178,9 +178,8 @@ def check_layered_solver(case: Case) -> None:
     motion, which the run's mesh takes: another build (``run.solver``), or floatfoam's own
     built before it (``make setup`` builds it again)."""
     path = solver_path(case)
-    with open(path, "rb") as binary:
-        if zone.LAYERED_SOLVER.encode() in binary.read():
-            return
+    if solver_has(case, zone.LAYERED_SOLVER):
+        return
     raise InputError(f"run.solver = {str(path)!r} lacks floatfoam's layered mesh motion "
                      "(src/solver/), which a body free in heave alone takes: valid is "
                      "floatfoam's interFoam (`make setup` builds it) or --set "

@@ -40,10 +40,10 @@ def infinite_frequency_added_mass(case, equilibrium, free: list[str]) -> np.ndar
     return np.asarray(coefficients.added_mass_inf, dtype=float)[np.ix_(index, index)]
 
 
-def coupling_gain(case, equilibrium, free: list[str]) -> float:
-    """g: the spectral radius of ½·M⁻¹·A∞ over the DoFs ``free``: the factor by which an
-    uncompensated corrector multiplies the error of the body's acceleration."""
-    a_inf = infinite_frequency_added_mass(case, equilibrium, free)
+def coupling_gain(case, a_inf: np.ndarray, free: list[str]) -> float:
+    """g: the spectral radius of ½·M⁻¹·A∞ over the DoFs ``free`` (``a_inf``:
+    :func:`infinite_frequency_added_mass` over them): the factor by which an uncompensated
+    corrector multiplies the error of the body's acceleration."""
     ixx, iyy, _ = (case.mass * k * k for k in case.gyradius)
     inertia = {"heave": case.mass, "surge": case.mass, "sway": case.mass,
                "roll": ixx, "pitch": iyy}
@@ -51,13 +51,13 @@ def coupling_gain(case, equilibrium, free: list[str]) -> float:
     return float(max(abs(np.linalg.eigvals(gain))))
 
 
-def compensating_mass(case, equilibrium, free: list[str], share: float) -> dict:
-    """The restraint's compensating mass: ½·A∞ over the DoFs ``free``, × ``share`` (the part of
+def compensating_mass(a_inf: np.ndarray, free: list[str], share: float) -> dict:
+    """The restraint's compensating mass: ½·A∞ (``a_inf``, over the DoFs ``free``:
+    :func:`infinite_frequency_added_mass`), × ``share`` (the part of
     the body the domain holds, as its mass), zero in the DoFs the body is held in; a 6 × 6
     matrix over x, y, z and the rotations about x, y and z, as the restraint's four tensors
     (row by row): ``linear`` (force of a linear acceleration), ``linearAngular`` (force of an
     angular one), ``angularLinear`` and ``angular`` (the moments of each)."""
-    a_inf = infinite_frequency_added_mass(case, equilibrium, free)
     out = np.zeros((6, 6))
     index = [_AXIS[name] for name in free]
     out[np.ix_(index, index)] = VELOCITY_SHARE * share * a_inf
