@@ -36,12 +36,21 @@ class SignalInterruptError(BaseException):
         return 128 + self.signum
 
 
+#: the interrupting signal received within :func:`signals_interrupt`, if any: a signal that
+#: lands inside a call into a C library (gmsh's ctypes) reaches the caller wrapped in that
+#: library's own exception (ctypes.ArgumentError), no longer a SignalInterruptError
+RECEIVED: list[int] = []
+
+
 @contextlib.contextmanager
 def signals_interrupt():
-    """Within the block, SIGINT, SIGTERM and SIGHUP raise :class:`SignalInterruptError`."""
+    """Within the block, SIGINT, SIGTERM and SIGHUP raise :class:`SignalInterruptError` (and
+    are kept in :data:`RECEIVED`)."""
     def handler(signum, frame):
+        RECEIVED.append(signum)
         raise SignalInterruptError(signum)
 
+    RECEIVED.clear()
     previous = {s: signal.signal(s, handler) for s in INTERRUPTS}
     try:
         yield

@@ -407,3 +407,28 @@ def test_a_run_stopped_while_it_remeshes_resumes(tmp_path):
     assert np.all(np.diff(t) > 0) and np.diff(t).max() < 0.01  # no overlap, no gap
     assert np.abs(np.diff(roll)).max() < 0.5  # no jump at a remeshing (deg per step)
     assert roll[-1] > 15.0  # turned on (measured 18.6°)
+
+
+def test_a_signal_wrapped_by_a_c_library_still_exits_as_interrupted(monkeypatch, capsys):
+    """A SIGTERM that lands inside a ctypes call (gmsh meshing a remeshed domain) comes back as
+    ctypes.ArgumentError wrapping floatfoam's SignalInterruptError: the command still ends as
+    interrupted, 143 and one line, not as an internal error."""
+    import argparse
+    import ctypes
+    import os
+    import signal
+
+    from floatfoam import cli
+
+    def command(args):
+        try:
+            os.kill(os.getpid(), signal.SIGTERM)
+        except BaseException as err:  # as ctypes converts an argument's exception
+            raise ctypes.ArgumentError(f"argument 3: {type(err).__name__}: {err}") from None
+
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--debug", action="store_true")
+    parser.set_defaults(func=command, command="probe")
+    monkeypatch.setattr(cli, "build_parser", lambda: parser)
+    assert cli.main([]) == 128 + signal.SIGTERM
+    assert capsys.readouterr().err.strip() == "floatfoam probe: interrupted (SIGTERM)"

@@ -15,7 +15,7 @@ import sys
 
 from floatfoam import scratch
 from floatfoam.errors import ComputationError, InputError
-from floatfoam.interrupts import SignalInterruptError, signals_interrupt
+from floatfoam.interrupts import RECEIVED, SignalInterruptError, signals_interrupt
 
 COMMANDS = ["theory", "gz", "mesh", "run", "batch", "status", "analyse", "report", "potential",
             "decay_model", "roll_damping", "validate", "pictures", "export"]
@@ -115,6 +115,11 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{prog}: {err}", file=sys.stderr)
         return 1
     except Exception as err:  # noqa: BLE001 - the last guard against a traceback
+        if RECEIVED:  # the signal came back wrapped by a C library's call (interrupts.py)
+            interrupted = SignalInterruptError(RECEIVED[-1])
+            with contextlib.suppress(OSError):
+                print(f"{prog}: interrupted ({interrupted})", file=sys.stderr)
+            return interrupted.exit_code
         if args.debug:
             raise
         print(f"{prog}: internal error: {type(err).__name__}: {err} (rerun with --debug for "
