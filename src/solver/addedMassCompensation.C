@@ -11,21 +11,33 @@
     `angular`, the moments of each), the restraint
     makes the generalized acceleration of the corrector
 
-        q = (M + A)^-1 (F + A q_last)
+        q = (M + 2A)^-1 (F + A (q_last + q_step))
 
     (M the body's mass and inertia in earth axes, F the force and moment on it, q_last the
-    acceleration the corrector before took): the same acceleration once the correctors agree
-    (q = q_last: M q = F), reached in one corrector where A is the fluid's answer. It returns
-    the force and moment M q - F, at the centre of rotation. q_last is the acceleration this
-    restraint gave (v1912 relaxes the acceleration after the restraints: with
-    accelerationRelaxation below 1 the body took less of it); the first corrector of a run,
-    and of a run resumed, is not compensated. With one corrector a step the compensation
-    blends the step's acceleration with the last step's, as a relaxation does.
+    acceleration the corrector before took, q_step the acceleration the last step ended with)
+    and returns the force and moment M q - F, at the centre of rotation. Once the correctors
+    agree (q = q_last) the body moves as
+
+        M q = F - A (q - q_step)
+
+    which is the coupling's two corrections with A = A_inf/2 (A_inf the added mass at infinite
+    frequency): the compensation, (M + A)^-1 (F + A q_last), reaches in one corrector what the
+    fluid's answer A would need many for (a body light beside its added mass makes the plain
+    correctors diverge); and the lag correction, -A (q - q_step): the body's faces move with
+    the step's velocity, so the fluid's pressure answers the mean of the step's two
+    accelerations, A_inf (q + q_step)/2, where the body's equation wants A_inf q at the step's
+    end (floatfoam's docs/coupling.md and docs/studies/time-step.md). A step is the Time's time
+    index. q_last is the acceleration this restraint gave (v1912 relaxes the acceleration after
+    the restraints: with accelerationRelaxation below 1 the body took less of it). The first
+    corrector of a run takes q_last as the acceleration of the force alone, and q_step as the
+    state's: zero on a release from rest (time 0, the acceleration v1912's Newmark integrator
+    starts from), and the acceleration of the force alone on a run resumed or restarted.
 \*---------------------------------------------------------------------------*/
 
 #include "sixDoFRigidBodyMotionRestraint.H"
 #include "sixDoFRigidBodyMotion.H"
 #include "addToRunTimeSelectionTable.H"
+#include "Time.H"
 
 namespace Foam
 {
@@ -48,6 +60,11 @@ class addedMassCompensation
 
     //- The acceleration the corrector before took: x, y, z, rotations about x, y, z
     mutable FixedList<scalar, 6> last_;
+
+    //- The time index of the step the last corrector was of, and the acceleration the step
+    //  before it ended with
+    mutable label step_;
+    mutable FixedList<scalar, 6> stepStart_;
 
     //- x = a^-1 b by Gaussian elimination with partial pivoting (a: 6 x 6, row by row)
     static FixedList<scalar, 6> solve(FixedList<scalar, 36> a, FixedList<scalar, 6> b)
@@ -106,7 +123,9 @@ public:
         angular_(Zero),
         addedMass_(Zero),
         started_(false),
-        last_(Zero)
+        last_(Zero),
+        step_(-1),
+        stepStart_(Zero)
     {
         read(dict);
     }
@@ -145,10 +164,19 @@ public:
                 mass[6*(3 + i) + 3 + j] = inertia(i, j);
             }
         }
+        const Time& time = motion.time();
         if (!started_)  // no corrector before: the acceleration of the force alone
         {
             last_ = solve(mass, load);
             started_ = true;
+            step_ = time.timeIndex();
+            const bool released = time.startTime().value() <= 0.5*time.deltaTValue();
+            stepStart_ = released ? FixedList<scalar, 6>(Zero) : last_;
+        }
+        else if (time.timeIndex() != step_)  // the step's first corrector
+        {
+            step_ = time.timeIndex();
+            stepStart_ = last_;
         }
         FixedList<scalar, 36> total(mass);
         FixedList<scalar, 6> rhs(load);
@@ -156,8 +184,8 @@ public:
         {
             for (label j = 0; j < 6; ++j)
             {
-                total[6*i + j] += addedMass_[6*i + j];
-                rhs[i] += addedMass_[6*i + j]*last_[j];
+                total[6*i + j] += 2*addedMass_[6*i + j];
+                rhs[i] += addedMass_[6*i + j]*(last_[j] + stepStart_[j]);
             }
         }
         last_ = solve(total, rhs);

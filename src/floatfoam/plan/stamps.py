@@ -51,7 +51,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     for path in sorted(layout.COMMON_DIR.rglob("*")):
         if path.is_file():
             digest.update(path.read_bytes())
-    digest.update(f"{BODY_VELOCITY} {COMPENSATION}".encode())
+    digest.update(f"{BODY_VELOCITY} {COMPENSATION} {COMPENSATION_FORM}".encode())
     digest.update(str(solver_path(case, check=False)).encode())
     return digest.hexdigest()[:16]
 
@@ -152,8 +152,13 @@ def solver_path(case: Case, check: bool = True) -> Path:
 BODY_VELOCITY = "bodyVelocity"
 
 #: floatfoam's six-DoF restraint that compensates the coupling's correctors by the body's
-#: added mass (src/solver/, docs/coupling.md)
+#: added mass and takes its added-mass force at the step's end (src/solver/, docs/coupling.md)
 COMPENSATION = "addedMassCompensation"
+
+#: the acceleration the restraint gives a corrector (A: half the added mass at infinite
+#: frequency; q_last, q_step: the corrector before's and the step before's): a run made with
+#: another is another run's
+COMPENSATION_FORM = "q = (M + 2A)^-1 (F + A (q_last + q_step))"
 
 
 def solver_has(case: Case, name: str) -> bool:

@@ -8,10 +8,14 @@ velocity at the step's end (floatfoam's ``bodyVelocity``), of which Newmark's sc
 v¹ = v⁰ + Δt·(a⁰ + a¹)/2, passes half of a change of a¹ on. A corrector thus maps the body's
 acceleration by the gain −½·M⁻¹·A∞ over the DoFs it is free in (M: its mass and inertia about
 G), and the correctors diverge where the gain's spectral radius g exceeds 1: a body light
-beside the water it moves (a flat, shallow float). floatfoam's six-DoF restraint
-``addedMassCompensation`` (src/solver/) takes the acceleration (M + A)⁻¹·(F + A·q_last) with
-A = ½·A∞ (:func:`compensating_mass`): the same once the correctors agree, reached in one
-corrector where A is the fluid's answer, whatever the body's lightness.
+beside the water it moves (a flat, shallow float). And with the correctors converged, the
+fluid's force answers the body's mean acceleration over the step, ½·A∞·(aⁿ + aⁿ⁺¹), where the
+body's equation at the step's end wants A∞·aⁿ⁺¹. floatfoam's six-DoF restraint
+``addedMassCompensation`` (src/solver/) mends both with A = ½·A∞ (:func:`compensating_mass`):
+each corrector takes the acceleration (M + 2A)⁻¹·(F + A·(q_last + qⁿ)) (q_last the corrector
+before's, qⁿ the step before's), whose fixed point M·q = F − A·(q − qⁿ) moves the body with
+the added-mass force at the step's end, reached in one corrector where A is the fluid's answer,
+whatever the body's lightness.
 """
 
 from __future__ import annotations
