@@ -31,13 +31,19 @@
     the restraints: with accelerationRelaxation below 1 the body took less of it). The first
     corrector of a run takes q_last as the acceleration of the force alone, and q_step as the
     state's: zero on a release from rest (time 0, the acceleration v1912's Newmark integrator
-    starts from), and the acceleration of the force alone on a run resumed or restarted.
+    starts from); on a run resumed or restarted, the acceleration and torque of the six-DoF
+    state it starts from (the Laplacian's point condition holds them in the motion's own
+    dictionary, the motion solvers in <time>/uniform/sixDoFRigidBodyMotionState), which are
+    the last step's q with v1912's accelerationRelaxation 1; the acceleration of the force
+    alone where neither is found.
 \*---------------------------------------------------------------------------*/
 
 #include "sixDoFRigidBodyMotionRestraint.H"
 #include "sixDoFRigidBodyMotion.H"
 #include "addToRunTimeSelectionTable.H"
 #include "Time.H"
+#include "IFstream.H"
+#include "OSspecific.H"
 
 namespace Foam
 {
@@ -65,6 +71,83 @@ class addedMassCompensation
     //  before it ended with
     mutable label step_;
     mutable FixedList<scalar, 6> stepStart_;
+
+    //- The six-DoF state of the motion's own dictionary, where it holds one (the Laplacian's
+    //  point condition of a run resumed): acceleration, torque (body axes), orientation
+    bool ownState_;
+    vector stateAcceleration_, stateTorque_;
+    tensor stateOrientation_;
+
+    //- The acceleration a state ended its step with, in the restraint's coordinates: the
+    //  linear one as it is; the angular one the inertia's inverse of its torque in earth axes
+    static FixedList<scalar, 6> stateAcceleration
+    (
+        const vector& a,
+        const vector& torque,
+        const tensor& Q,
+        const FixedList<scalar, 36>& mass
+    )
+    {
+        const vector moment = Q & torque;
+        FixedList<scalar, 36> inertia(Zero);
+        FixedList<scalar, 6> load(Zero);
+        for (label i = 0; i < 3; ++i)
+        {
+            inertia[6*i + i] = 1;
+            load[3 + i] = moment[i];
+            for (label j = 0; j < 3; ++j)
+            {
+                inertia[6*(3 + i) + 3 + j] = mass[6*(3 + i) + 3 + j];
+            }
+        }
+        FixedList<scalar, 6> q = solve(inertia, load);
+        for (label i = 0; i < 3; ++i)
+        {
+            q[i] = a[i];
+        }
+        return q;
+    }
+
+    //- The acceleration the state a run starts from ended its step with, if found
+    bool startState
+    (
+        const sixDoFRigidBodyMotion& motion,
+        const FixedList<scalar, 36>& mass,
+        FixedList<scalar, 6>& q
+    ) const
+    {
+        if (ownState_)
+        {
+            q = stateAcceleration(stateAcceleration_, stateTorque_, stateOrientation_, mass);
+            return true;
+        }
+        const Time& time = motion.time();  // read by this rank alone: no IOobject, no MPI
+        const fileName file =
+            time.path()/Time::timeName(time.startTime().value())/"uniform"
+           /"sixDoFRigidBodyMotionState";
+        if (!isFile(file))
+        {
+            return false;
+        }
+        IFstream stream(file);
+        const dictionary state(stream);
+        if
+        (
+            !state.found("acceleration") || !state.found("torque")
+         || !state.found("orientation")
+        )
+        {
+            return false;
+        }
+        q = stateAcceleration
+        (
+            state.get<vector>("acceleration"),
+            state.get<vector>("torque"),
+            state.get<tensor>("orientation"),
+            mass
+        );
+        return true;
+    }
 
     //- x = a^-1 b by Gaussian elimination with partial pivoting (a: 6 x 6, row by row)
     static FixedList<scalar, 6> solve(FixedList<scalar, 36> a, FixedList<scalar, 6> b)
@@ -125,9 +208,27 @@ public:
         started_(false),
         last_(Zero),
         step_(-1),
-        stepStart_(Zero)
+        stepStart_(Zero),
+        ownState_(false),
+        stateAcceleration_(Zero),
+        stateTorque_(Zero),
+        stateOrientation_(I)
     {
         read(dict);
+        // the restraint's dictionary sits in the motion's "restraints"
+        if (&dict.parent() != &dictionary::null && &dict.parent().parent() != &dictionary::null)
+        {
+            const dictionary& motionDict = dict.parent().parent();
+            ownState_ =
+                motionDict.found("acceleration") && motionDict.found("torque")
+             && motionDict.found("orientation");
+            if (ownState_)
+            {
+                motionDict.readEntry("acceleration", stateAcceleration_);
+                motionDict.readEntry("torque", stateTorque_);
+                motionDict.readEntry("orientation", stateOrientation_);
+            }
+        }
     }
 
     virtual autoPtr<sixDoFRigidBodyMotionRestraint> clone() const
@@ -171,7 +272,22 @@ public:
             started_ = true;
             step_ = time.timeIndex();
             const bool released = time.startTime().value() <= 0.5*time.deltaTValue();
-            stepStart_ = released ? FixedList<scalar, 6>(Zero) : last_;
+            stepStart_ = last_;
+            word source("a release from rest");
+            if (released)
+            {
+                stepStart_ = FixedList<scalar, 6>(Zero);
+            }
+            else if (startState(motion, mass, stepStart_))
+            {
+                source = ownState_ ? "the motion's state" : "the state file";
+            }
+            else
+            {
+                source = "the force alone";
+            }
+            Info<< "addedMassCompensation: the acceleration before the first step from "
+                << source << endl;
         }
         else if (time.timeIndex() != step_)  // the step's first corrector
         {
