@@ -184,6 +184,12 @@ def test_resume_after_every_write(tmp_path, ranks):
     rebuild_motion(run_dir / "log.interFoam", tmp_path / "from_log.csv")
     from_log = read_motion(tmp_path / "from_log.csv")
     assert len(record["time"]) == len(from_log["time"]) > 30
+    # the coupling's restraint (src/solver/addedMassCompensation.C) starts each restart from
+    # the acceleration the six-DoF state it restarts from holds, the release from rest from none
+    solver_log = (run_dir / "log.interFoam").read_text()
+    restarts = solver_log.count("floatfoam: resumed")
+    assert solver_log.count("before the first step from the state file") == restarts >= 2
+    assert solver_log.count("before the first step from a release from rest") == 1
     for key in ("time", "z"):  # every step the solver made, recorded once, in order
         np.testing.assert_allclose(record[key], from_log[key], rtol=0, atol=1e-9)
 
