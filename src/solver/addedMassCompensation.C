@@ -79,31 +79,21 @@ class addedMassCompensation
     tensor stateOrientation_;
 
     //- The acceleration a state ended its step with, in the restraint's coordinates: the
-    //  linear one as it is; the angular one the inertia's inverse of its torque in earth axes
+    //  linear one as it is; the angular one the inertia's (earth axes) inverse of its torque
     static FixedList<scalar, 6> stateAcceleration
     (
         const vector& a,
         const vector& torque,
         const tensor& Q,
-        const FixedList<scalar, 36>& mass
+        const tensor& inertia
     )
     {
-        const vector moment = Q & torque;
-        FixedList<scalar, 36> inertia(Zero);
-        FixedList<scalar, 6> load(Zero);
-        for (label i = 0; i < 3; ++i)
-        {
-            inertia[6*i + i] = 1;
-            load[3 + i] = moment[i];
-            for (label j = 0; j < 3; ++j)
-            {
-                inertia[6*(3 + i) + 3 + j] = mass[6*(3 + i) + 3 + j];
-            }
-        }
-        FixedList<scalar, 6> q = solve(inertia, load);
-        for (label i = 0; i < 3; ++i)
+        const vector angular = inv(inertia) & (Q & torque);
+        FixedList<scalar, 6> q;
+        for (direction i = 0; i < 3; ++i)
         {
             q[i] = a[i];
+            q[3 + i] = angular[i];
         }
         return q;
     }
@@ -112,13 +102,13 @@ class addedMassCompensation
     bool startState
     (
         const sixDoFRigidBodyMotion& motion,
-        const FixedList<scalar, 36>& mass,
+        const tensor& inertia,
         FixedList<scalar, 6>& q
     ) const
     {
         if (ownState_)
         {
-            q = stateAcceleration(stateAcceleration_, stateTorque_, stateOrientation_, mass);
+            q = stateAcceleration(stateAcceleration_, stateTorque_, stateOrientation_, inertia);
             return true;
         }
         const Time& time = motion.time();  // read by this rank alone: no IOobject, no MPI
@@ -144,7 +134,7 @@ class addedMassCompensation
             state.get<vector>("acceleration"),
             state.get<vector>("torque"),
             state.get<tensor>("orientation"),
-            mass
+            inertia
         );
         return true;
     }
@@ -278,7 +268,7 @@ public:
             {
                 stepStart_ = FixedList<scalar, 6>(Zero);
             }
-            else if (startState(motion, mass, stepStart_))
+            else if (startState(motion, inertia, stepStart_))
             {
                 source = ownState_ ? "the motion's state" : "the state file";
             }
