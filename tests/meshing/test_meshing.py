@@ -274,8 +274,9 @@ heave = 0.01
 """ + LAYERED_3D
 
 
-def _prism_nodes(path):
-    """The nodes of every prism of an MSH file, (n, 6, 3)."""
+def _prism_nodes(path, band=False):
+    """The nodes of the prisms of an MSH file, (n, 6, 3): those of the body's layers, or with
+    ``band`` those of the free-surface band (their two triangles level)."""
     import gmsh
 
     from floatfoam import gmshio
@@ -286,8 +287,10 @@ def _prism_nodes(path):
         where = dict(zip(tags, coords.reshape(-1, 3), strict=True))
         types, _, nodes = gmsh.model.mesh.getElements(3)
         prisms = [n for t, n in zip(types, nodes, strict=True) if t == 6]
-        return np.array([where[k] for k in prisms[0]]).reshape(-1, 6, 3) if prisms else \
+        every = np.array([where[k] for k in prisms[0]]).reshape(-1, 6, 3) if prisms else \
             np.zeros((0, 6, 3))
+        level = np.ptp(every[:, :3, 2], axis=1) + np.ptp(every[:, 3:, 2], axis=1) < 1e-12
+        return every[level] if band else every[~level]
 
 
 @pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")
@@ -347,6 +350,45 @@ def test_a_symmetric_triangulated_body_in_the_half_domain(tmp_path):
     assert 0.45 < result["cells"] / whole["cells"] < 0.55
     assert result["body_patch"]["immersed_error"] == pytest.approx(
         whole["body_patch"]["immersed_error"], abs=0.005)
+
+@pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")
+@pytest.mark.parametrize("half", [True, False])
+def test_the_free_surface_band_in_level_layers_of_prisms(tmp_path, half):
+    """Outside a column about the body, the band |z| ≤ b of a 3D tank is made of prisms in
+    layers one body cell high: every cell of a layer has its centre at the same height, so a
+    flat free surface in it stands in hydrostatic balance. The tetrahedra within the column
+    meet the band's walls as two triangles per quadrangle; the converted mesh makes each such
+    prism a polyhedron with both triangles for faces (no patch of unmatched faces is left),
+    which checkMesh finds sound (gmsh's own pyramids on the quadrangles overlapped
+    tetrahedra there)."""
+    from floatfoam.foam.meshcheck import convert_and_check
+    from floatfoam.tank import tank
+
+    (tmp_path / "case.toml").write_text(SPHERE_3D)
+    case = with_overrides(load_case(str(tmp_path)), [f"mesh.gmsh.half_3d={str(half).lower()}",
+                                                     "mesh.gmsh.band_prisms_3d=true"])
+    result = build_domain(case, "coarse", path=tmp_path / "s.msh")
+    band, h = tank(case).band, levels.mesh_spec(case, "coarse").body_size_3d
+    prisms = _prism_nodes(tmp_path / "s.msh", band=True)
+    layers = max(2, round(2 * band / h))
+    heights = np.unique(np.round(prisms[..., 2], 9))
+    assert len(heights) == layers + 1  # the band's levels, from −b to b
+    assert heights[0] == pytest.approx(-band) and heights[-1] == pytest.approx(band)
+    # outside the column: the body's reach (0.1 m), its layers (one cell) and the margin
+    reach = np.abs(prisms[..., :2]).max(axis=2).min()
+    assert reach == pytest.approx(0.1 + h + 0.5 * 0.2, rel=0.05)
+    assert result["cell_types"]["Prism"] == len(prisms) + 3 * result["patches"]["body"]
+    assert "Pyramid" not in result["cell_types"]
+    quality = convert_and_check(tmp_path / "s.msh", tmp_path / "foam")
+    assert quality["mesh_ok"] and quality["cells"] == result["cells"]
+    assert "defaultFaces" not in quality["patches"]
+    # the prisms beside the column: polyhedra of six faces, two of them its wall's triangles
+    assert quality["cell_types"]["polyhedra"] > 0
+    assert quality["cell_types"]["prisms"] + quality["cell_types"]["polyhedra"] == \
+        result["cell_types"]["Prism"]
+    build_domain(load_case(str(tmp_path)), "coarse", path=tmp_path / "t.msh")  # the default
+    assert len(_prism_nodes(tmp_path / "t.msh", band=True)) == 0
+
 
 ELLIPSOID_3D = """[body]
 shape = "ellipsoid"

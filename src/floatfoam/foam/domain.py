@@ -192,12 +192,14 @@ def make_polymesh(mesh: RunMesh, run_dir: Path, remade: str | None = None) -> di
         runner.run_app(run_dir, "blockMesh", ["blockMesh"])
         return None
     from floatfoam.foam.meshcheck import parse_check_mesh, set_patch_types
+    from floatfoam.foam.splitfaces import join_split_faces
     from floatfoam.layout import mark_done, step_done
 
     prefix, source, once = (f"{remade}.", f"{remade}.msh", False) if remade else \
         ("", "domain.msh", True)
     runner.run_app(run_dir, f"{prefix}gmshToFoam", ["gmshToFoam", source], marker=once)
     if not (once and step_done(run_dir, "patchTypes")):
+        join_split_faces(run_dir)  # a 3D band's prisms to the tetrahedra beside them
         set_patch_types(run_dir)
         if once:
             mark_done(run_dir, "patchTypes")

@@ -1,4 +1,5 @@
-"""Convert a gmsh mesh for OpenFOAM and check it: gmshToFoam, the patch types, checkMesh.
+"""Convert a gmsh mesh for OpenFOAM and check it: gmshToFoam (the prisms of a 3D band joined
+to the tetrahedra beside them: :mod:`floatfoam.foam.splitfaces`), the patch types, checkMesh.
 
 Light applications only (no solver): they run in a scratch case with the minimal system/
 files they read, rendered with foamlib. gmshToFoam names the patches after the physical groups
@@ -15,6 +16,7 @@ from pathlib import Path
 from floatfoam.foam.dictionaries import write_dict
 from floatfoam.foam.patches import PATCH_TYPES
 from floatfoam.foam.runner import check_path, run_app
+from floatfoam.foam.splitfaces import join_split_faces
 
 _SYSTEM = {
     "controlDict": {"application": "checkMesh", "startFrom": "startTime", "startTime": 0,
@@ -69,6 +71,7 @@ def convert_and_check(msh: Path, case_dir: Path, types: dict | None = None) -> d
     write_system(case_dir)
     run_app(case_dir, "gmshToFoam", ["gmshToFoam", str(Path(msh).resolve())], quiet=True,
             marker=False)
+    join_split_faces(case_dir)  # a 3D band's prisms to the tetrahedra beside them
     patches = set_patch_types(case_dir, types)
     log = run_app(case_dir, "checkMesh", ["checkMesh"], quiet=True, marker=False, check=False)
     result = parse_check_mesh(log.read_text())

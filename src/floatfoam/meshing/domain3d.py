@@ -88,25 +88,28 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
             normals = None
             if half:
                 vertices, faces, normals = half_surface(vertices, faces, half, spec)
-            body_surfaces, volume, layers = _discrete_body(gmsh, vertices, faces, where,
+            body_surfaces, volumes, layers, column = _discrete_body(gmsh, vertices, faces, where,
                                                            tank, spec, half, normals=normals)
         elif spec.layers_3d:  # an ellipsoid's surface meshed by OpenCASCADE, then as triangles
             vertices, faces = surface
-            body_surfaces, volume, layers = _discrete_body(
+            body_surfaces, volumes, layers, column = _discrete_body(
                 gmsh, vertices, faces, where, tank, spec, half,
                 normals=ellipsoid_normals(body, vertices))
         else:
             body_surfaces, volume = _solid_body(gmsh, body, where, tank, spec, half)
-            layers = Layers()
+            volumes, layers, column = (volume,), Layers(), []
         # curvature sizing on reparametrised triangles costs minutes (the pontoon's, the
         # superellipsoid's): exact solids only, the layered ellipsoid's remeshed surface too
         # (2 s for ellipsoid_roll's coarse mesh)
         _size_field(gmsh, body_surfaces, spec, tank,
                     curvature=not body.given_by_triangles)
+        if column:  # the band's walls towards the column: triangles for the tetrahedra
+            gmsh.model.mesh.generate(2)
+            split_walls(gmsh, column)
         gmsh.model.mesh.generate(3)
         if surface is not None:  # remeshed on OpenCASCADE's triangles: back onto the solid
             onto_ellipsoid(gmsh, body, body_surfaces, where, layer_heights(spec)[0])
-        groups = _physical_groups(gmsh, volume, body_surfaces, tank, half, layers)
+        groups = _physical_groups(gmsh, volumes, body_surfaces, tank, half, layers)
         gmshio.write_msh22(path)
         result = summary(gmsh, groups, path)
         result["body_triangles"] = gmshio.surface_triangles(body_surfaces)
@@ -189,27 +192,169 @@ def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank, spec: MeshSpe
                         frozenset(sides))
         inner = tops
         geo.synchronize()  # the tops' edges known to the model: the rim below
+    core = _core_half_width(vertices, spec, tank) if spec.band_prisms_3d else None
+    volumes, column = _tank_around(gmsh, inner, tank, spec, half, core)
+    return body_surfaces, volumes, layers, column
+
+
+def _core_half_width(vertices: np.ndarray, spec: MeshSpec, tank: Tank) -> float | None:
+    """Half-width of the column about the body that the free-surface band's prisms leave to
+    tetrahedra: the placed body's horizontal reach, its prism layers and the core's margin;
+    None (no prisms) where that column would not leave a cell between it and the tank's
+    walls."""
+    reach = float(np.abs(vertices[:, :2]).max()) + spec.layers_height_3d + spec.margin
+    if reach + spec.body_size_3d >= min(tank.half_length, tank.half_width):
+        return None
+    return reach
+
+
+def _tank_around(gmsh, inner: list[int], tank: Tank, spec: MeshSpec, half: str | None,
+                 core: float | None) -> tuple[tuple[int, ...], list[int]]:
+    """The tank (its half ``half`` ≥ 0) around the closed (in a half tank: open at the plane)
+    surfaces ``inner``. With ``core``: its free-surface band |z| ≤ b outside the column
+    |x|, |y| ≤ core is extruded upwards from z = −b in horizontal layers of prisms (one body
+    cell high: gmsh's structured extrusion), so that a flat free surface there lies in a layer
+    of cells whose centres are level; the rest is one volume of tetrahedra. Returns the
+    volumes (tetrahedra first) and the band's faces towards the column (its walls, meshed in
+    quadrangles that :func:`split_walls` halves for the tetrahedra)."""
+    geo = gmsh.model.geo
     x0 = 0.0 if half == "x" else -tank.half_length
     y0 = 0.0 if half == "y" else -tank.half_width
     x1, y1, z0, z1 = tank.half_length, tank.half_width, -tank.depth, tank.air_height
-    corners = [[geo.addPoint(x, y, z) for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
-               for z in (z0, z1)]
-    rings = [[geo.addLine(c[k], c[(k + 1) % 4]) for k in range(4)] for c in corners]
-    posts = [geo.addLine(corners[0][k], corners[1][k]) for k in range(4)]
-    faces = [geo.addPlaneSurface([geo.addCurveLoop(rings[0])]),
-             geo.addPlaneSurface([geo.addCurveLoop(rings[1])])]
-    plane = {"x": 3, "y": 0}.get(half)  # side k runs from corner k to k + 1: x = x0 is the 4th
+    rim = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]  # side k runs from corner k to k + 1
+    plane = {"x": 3, "y": 0}.get(half)  # x = x0 is the 4th side
+    walls = _Walls(gmsh)
+    faces = [walls.face([(x, y, z) for x, y in rim]) for z in (z0, z1)]
+    if core is None:
+        for k in range(4):
+            (xa, ya), (xb, yb) = rim[k], rim[(k + 1) % 4]
+            outline = [(xa, ya, z0), (xb, yb, z0), (xb, yb, z1), (xa, ya, z1)]
+            faces.append(walls.face(outline, [_rim(gmsh, inner)] if k == plane else []))
+        return (_volume(geo, faces, inner, half),), []
+    b = tank.band
+    band, shared, column = _band(gmsh, walls, rim, half, core, b, spec)
     for k in range(4):
-        loops = [geo.addCurveLoop([rings[0][k], posts[(k + 1) % 4], -rings[1][k], -posts[k]])]
-        if k == plane:  # the body's (or its layers') cut out of the symmetry plane
-            loops.append(geo.addCurveLoop(_rim(gmsh, inner), reorient=True))
-        faces.append(geo.addPlaneSurface(loops))
+        (xa, ya), (xb, yb) = rim[k], rim[(k + 1) % 4]
+        if k == plane:  # the plane's face: the band's strips and the body's rim cut out of it
+            u0, u1 = (y0, y1) if half == "x" else (x0, x1)
+
+            def at(u, z):
+                return (0.0, u, z) if half == "x" else (u, 0.0, z)
+
+            outline = [at(u0, z0), at(u1, z0), at(u1, -b), at(core, -b), at(core, b),
+                       at(u1, b), at(u1, z1), at(u0, z1), at(u0, b), at(-core, b),
+                       at(-core, -b), at(u0, -b)]
+            faces.append(walls.face(outline, [_rim(gmsh, inner)]))
+            continue
+        faces.append(walls.face([(xa, ya, z0), (xb, yb, z0), (xb, yb, -b), (xa, ya, -b)]))
+        faces.append(walls.face([(xa, ya, b), (xb, yb, b), (xb, yb, z1), (xa, ya, z1)]))
+    return (_volume(geo, faces + shared + column, inner, half), band), column
+
+
+def _volume(geo, faces: list[int], inner: list[int], half: str | None) -> int:
+    """The volume bounded by ``faces`` and ``inner`` (one shell in a half tank, two else)."""
     if half:
         volume = geo.addVolume([geo.addSurfaceLoop(faces + inner)])
     else:
         volume = geo.addVolume([geo.addSurfaceLoop(faces), geo.addSurfaceLoop(inner)])
     geo.synchronize()
-    return body_surfaces, volume, layers
+    return volume
+
+
+def _band(gmsh, walls: _Walls, rim, half: str | None, core: float, b: float,
+          spec: MeshSpec) -> tuple[int, list[int], list[int]]:
+    """The free-surface band outside the column |x|, |y| ≤ ``core``: its floor at z = −b
+    extruded to z = b in layers one body cell high. Returns its volume, its floor and roof,
+    and its walls towards the column (the faces it shares with the tetrahedra)."""
+    geo = gmsh.model.geo
+    (x0, y0), (x1, _), (_, y1) = rim[0], rim[1], rim[2]
+    c = core
+    if half == "x":  # a U about the column's half, open at x = 0
+        loops = [[(0.0, y0), (x1, y0), (x1, y1), (0.0, y1), (0.0, c), (c, c), (c, -c),
+                  (0.0, -c)]]
+    elif half == "y":
+        loops = [[(x0, 0.0), (-c, 0.0), (-c, c), (c, c), (c, 0.0), (x1, 0.0), (x1, y1),
+                  (x0, y1)]]
+    else:
+        loops = [rim, [(-c, -c), (c, -c), (c, c), (-c, c)]]
+    floor = walls.face([[(x, y, -b) for x, y in loop] for loop in loops], nested=True)
+    layers = max(2, round(2 * b / spec.body_size_3d))
+    made = geo.extrude([(2, floor)], 0, 0, 2 * b, numElements=[layers], recombine=True)
+    geo.synchronize()
+    walls.index()
+    column = []  # the sides within the column's reach; the others are the tank's
+    for dim, tag in made[2:]:
+        if dim == 2:
+            box = gmsh.model.getBoundingBox(2, tag)
+            if max(abs(v) for v in (*box[:2], *box[3:5])) <= c * (1 + 1e-4):
+                column.append(tag)
+    return made[1][1], [floor, made[0][1]], column
+
+
+def split_walls(gmsh, walls: list[int]) -> None:
+    """Halve each quadrangle of the meshed surfaces ``walls`` into two triangles, so that the
+    tetrahedra beside them conform to triangles (gmsh's pyramids on quadrangles overlapped
+    tetrahedra here); the prisms keep their quadrangular side, which
+    :func:`floatfoam.foam.splitfaces.join_split_faces` joins to the two triangles."""
+    for tag in walls:
+        types, _, nodes = gmsh.model.mesh.getElements(2, tag)
+        quads = [np.asarray(n, dtype=np.int64).reshape(-1, 4)
+                 for t, n in zip(types, nodes, strict=True) if t == gmshio.QUAD]
+        if not quads:
+            continue
+        q = np.concatenate(quads)
+        halves = np.concatenate([q[:, [0, 1, 2]], q[:, [0, 2, 3]]], axis=1).reshape(-1)
+        gmsh.model.mesh.removeElements(2, tag)
+        gmsh.model.mesh.addElementsByType(tag, gmshio.TRIANGLE, [], halves.tolist())
+
+
+class _Walls:
+    """Plane faces of the tank built from outlines of points, sharing the points and lines
+    that exist already (the band's extruded ones among them) by their coordinates."""
+
+    def __init__(self, gmsh):
+        self.gmsh, self.geo = gmsh, gmsh.model.geo
+        self.points: list[tuple[np.ndarray, int]] = []
+        self.lines: dict[frozenset, int] = {}
+
+    def index(self) -> None:
+        """Learn the model's points and straight lines (after a synchronize)."""
+        model = self.gmsh.model
+        known = {tag for _, tag in self.points}
+        for _, tag in model.getEntities(0):
+            if tag not in known:
+                self.points.append((np.asarray(model.getValue(0, tag, [])), tag))
+        for _, tag in model.getEntities(1):
+            ends = [abs(t) for _, t in model.getBoundary([(1, tag)], oriented=False)]
+            if len(ends) == 2:
+                self.lines.setdefault(frozenset(ends), tag)
+
+    def point(self, xyz) -> int:
+        """The point at ``xyz`` (within 1e-9 m: an extruded one lands within rounding of
+        where it is asked for), made if there is none."""
+        xyz = np.asarray(xyz, dtype=float)
+        for where, tag in self.points:
+            if np.abs(where - xyz).max() < 1e-9:
+                return tag
+        tag = self.geo.addPoint(*xyz)
+        self.points.append((xyz, tag))
+        return tag
+
+    def loop(self, outline) -> int:
+        tags = [self.point(q) for q in outline]
+        curves = []
+        for a, b in zip(tags, tags[1:] + tags[:1], strict=True):
+            if frozenset((a, b)) not in self.lines:
+                self.lines[frozenset((a, b))] = self.geo.addLine(a, b)
+            curves.append(self.lines[frozenset((a, b))])
+        return self.geo.addCurveLoop(curves, reorient=True)
+
+    def face(self, outline, holes: list[list[int]] = (), nested: bool = False) -> int:
+        """A plane face: ``outline`` (points), or with ``nested`` a list of outlines (the
+        first the outer one); ``holes``: curve loops given as their curves."""
+        loops = [self.loop(o) for o in (outline if nested else [outline])]
+        loops += [self.geo.addCurveLoop(h, reorient=True) for h in holes]
+        return self.geo.addPlaneSurface(loops)
 
 
 def _rim(gmsh, surfaces: list[int]) -> list[int]:
@@ -312,13 +457,16 @@ def _size_field(gmsh, body_surfaces, spec: MeshSpec, tank: Tank, curvature: bool
     gmsh.option.setNumber("Mesh.Optimize", 1)
 
 
-def _physical_groups(gmsh, volume: int, body_surfaces: list[int], tank: Tank,
+def _physical_groups(gmsh, volumes: tuple[int, ...], body_surfaces: list[int], tank: Tank,
                      half: str | None = None, layers: Layers = Layers()) -> dict:
     groups = {"bottom": [], "atmosphere": [], "sides": [], "body": sorted(body_surfaces)}
     if half:
         groups["symmetry"] = []
     eps = 1e-6 * tank.half_length
-    for _, tag in gmsh.model.getBoundary([(3, volume)], oriented=False):
+    # the boundary of the tetrahedra and the band's prisms together (the faces they share
+    # are inside)
+    for _, tag in gmsh.model.getBoundary([(3, v) for v in volumes], combined=True,
+                                         oriented=False):
         tag = abs(tag)
         if tag in body_surfaces or tag in layers.tops:
             continue
@@ -335,7 +483,7 @@ def _physical_groups(gmsh, volume: int, body_surfaces: list[int], tank: Tank,
         groups["symmetry"].extend(tag for tag in sorted(layers.sides)
                                   if _in_plane(gmsh, tag, half, tank))
     named = {name: (2, tags) for name, tags in groups.items()}
-    named["fluid"] = (3, [volume, *layers.volumes])
+    named["fluid"] = (3, [*volumes, *layers.volumes])
     for name, (dim, tags) in named.items():
         if not tags:
             raise RuntimeError(f"meshing: the {name!r} patch came out empty")

@@ -46,6 +46,8 @@ class MeshSpec:
     growth, growth_3d : grading away from the body (coarse values; see the module docstring)
     layers_3d, layers_height_3d : prism layers at the body in 3D (a body given by triangles,
         or an ellipsoid): their count (0: none) and total height (m)
+    band_prisms_3d : the 3D free-surface band in horizontal layers of prisms outside a column
+        about the body (:mod:`floatfoam.meshing.domain3d`)
     margin : half-thickness of the core block around the body, m
     """
 
@@ -63,6 +65,7 @@ class MeshSpec:
     margin: float
     layers_3d: int = 0
     layers_height_3d: float = 0.0
+    band_prisms_3d: bool = False
 
     def refine(self, count: float) -> int:
         """A coarse-level cell count at this level: round(count r^index), at least 1."""
@@ -87,4 +90,5 @@ def mesh_spec(case: Case, level: str) -> MeshSpec:
         curvature_size=body_size / cfg.curvature_refinement,
         growth=cfg.growth, growth_3d=cfg.growth_3d, margin=cfg.margin * length,
         layers_3d=cfg.layers_3d,
-        layers_height_3d=cfg.layers_height_3d * length / (cfg.body_cells_3d * scale))
+        layers_height_3d=cfg.layers_height_3d * length / (cfg.body_cells_3d * scale),
+        band_prisms_3d=cfg.band_prisms_3d)
