@@ -219,8 +219,8 @@ class GmshSettings:
     # a flat free surface cut by tetrahedra is out of hydrostatic balance (interFoam's gravity
     # term balances the pressure across horizontal faces alone: docs/openfoam-v1912.md): on
     # the heaved 3D sphere the air far from it carried 0.5–0.9 m/s (median), 10⁻⁴ m/s on this
-    # band's prisms; its period stays 1.4 % short with them (the tetrahedra at the body), its
-    # ζ falls from +6 % to −18 % of Cummins' (docs/studies/cases/superellipsoid_buoy.md)
+    # band's prisms; its period stays 1.1–1.4 % short with them (the tetrahedra at the body):
+    # off by default (docs/studies/cases/superellipsoid_buoy.md)
     band_prisms_3d: bool = spec(False, kind=bool, added=True,
                                 doc="the free-surface band of a 3D tank (|z| ≤ domain.band) in "
                                     "horizontal layers of prisms outside a column about the "
