@@ -31,7 +31,11 @@ def test_a_mesh_with_inverted_cells_stops_before_the_solver(tmp_path, monkeypatc
     monkeypatch.setattr(runner, "run_app", fake_app)
     import floatfoam.foam.meshcheck as meshcheck
 
+    import floatfoam.foam.splitfaces as splitfaces
+
+    # no gmshToFoam ran: no mesh whose patches to type or whose split faces to join
     monkeypatch.setattr(meshcheck, "set_patch_types", lambda run_dir: None)
+    monkeypatch.setattr(splitfaces, "join_split_faces", lambda run_dir: 0)
     mesh = domain.RunMesh(kind="3d", factor=1.0, cells=None, share=1.0, x_mid=None,
                           extents=(1.0, 1.0, 1.0), inner=0.1, outer=0.5)
     with pytest.raises(runner.RunError) as raised:
