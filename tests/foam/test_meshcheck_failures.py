@@ -30,7 +30,6 @@ def test_a_mesh_with_inverted_cells_stops_before_the_solver(tmp_path, monkeypatc
 
     monkeypatch.setattr(runner, "run_app", fake_app)
     import floatfoam.foam.meshcheck as meshcheck
-
     import floatfoam.foam.splitfaces as splitfaces
 
     # no gmshToFoam ran: no mesh whose patches to type or whose split faces to join
