@@ -51,9 +51,9 @@ def join_split_faces(case_dir: Path) -> int:
             raise RuntimeError(f"{poly}: a triangle of {UNMATCHED} (face {index}) lies on no "
                                "quadrangle of it")
         joined.setdefault(quad, []).append(index)
-    quads_found = {index for index in quads.values()}
-    if len(triangles) + len(quads_found) != count or \
-            any(len(pair) != 2 for pair in joined.values()) or len(joined) != len(quads_found):
+    quads_found = set(quads.values())
+    if len(triangles) + len(quads_found) != count or len(joined) != len(quads_found) or \
+            any(len(pair) != 2 for pair in joined.values()):
         raise RuntimeError(f"{poly}: the faces of {UNMATCHED} do not pair as a quadrangle and "
                            "two triangles each")
     internal = [(int(owner[i]), int(neighbour[i]), faces[i]) for i in range(len(neighbour))]
@@ -80,7 +80,7 @@ def join_split_faces(case_dir: Path) -> int:
         new_owner.extend(int(o) for o in owner[first:first + size])
         kept.append((name, entry))
     cells = int(max(owner.max(), neighbour.max() if len(neighbour) else 0)) + 1
-    points = _point_count(poly)
+    points = len(FoamFile(poly / "points")[None])
     note = (f"nPoints:{points}  nCells:{cells}  nFaces:{len(new_faces)}  "
             f"nInternalFaces:{len(new_neighbour)}")
     _write_list(poly / "faces", "faceList", None,
@@ -102,12 +102,6 @@ def _faces(path: Path) -> list[list[int]]:
         offsets, flat = (np.asarray(a, dtype=np.int64) for a in read)
         return [flat[a:b].tolist() for a, b in zip(offsets[:-1], offsets[1:], strict=True)]
     return [[int(p) for p in face] for face in read]
-
-
-def _point_count(poly: Path) -> int:
-    from foamlib import FoamFile
-
-    return len(FoamFile(poly / "points")[None])
 
 
 def _write_list(path: Path, cls: str, note: str | None, lines: list[str]) -> None:
