@@ -11,7 +11,9 @@
 # body's velocity condition bodyVelocity, docs/openfoam-v1912.md, and the coupling's restraint
 # addedMassCompensation, docs/coupling.md) is compiled with the same
 # flags and linked into the same executable, so that every run of floatfoam's interFoam has it
-# without a library to find at run time.
+# without a library to find at run time; src/solver/interfaceGravity.H (the gravity term at the
+# free surface's height, PIMPLE's interfaceGravity: docs/studies/interface-gravity.md) is
+# compiled into interFoam.C itself.
 #
 # Output: build/solver/bin/interFoam. Idempotent: does nothing when the binary is there and
 # was built from the same flags and sources (src/solver/); a change to those sources alone
@@ -24,7 +26,7 @@ BIN=$OUT/bin/interFoam
 FLAGS="-std=c++11 -m64 -DOPENFOAM=1912 -DWM_DP -DWM_LABEL_SIZE=32 -DNoRepository -ftemplate-depth-100 -O3 -fno-tree-vectorize -fPIC -w"
 STAMP=$OUT/bin/.flags
 OWN=(src/solver/*.C)
-BUILT="$FLAGS $(cat "${OWN[@]}" scripts/build_solver.sh | sha256sum | cut -c1-16)"  # this script: its changes to the sources
+BUILT="$FLAGS $(cat "${OWN[@]}" src/solver/*.H scripts/build_solver.sh | sha256sum | cut -c1-16)"  # this script: its changes to the sources
 if [ -x "$BIN" ] && [ "$(cat "$STAMP" 2>/dev/null)" = "$BUILT" ]; then
   exit 0
 fi
@@ -122,14 +124,36 @@ if [ "$(grep -c 'motion() const { return motion_; }' "$BODY"/*.H)" != 1 ]; then
   echo "build_solver: sixDoFRigidBodyDisplacement has no TypeName to add the accessor after" >&2
   exit 1
 fi
-OBJECT_ID="$FLAGS $(cat "$VOF"/*.H | sha256sum | cut -c1-16)"
+# The gravity term with the density's jump at the free surface's height (src/solver/
+# interfaceGravity.H, PIMPLE's `interfaceGravity`): interFoam's own folder is copied, its
+# -ghf*snGrad(rho) in the momentum and pressure equations takes the face field that header returns.
+APP=$OUT/interFoam
+rm -rf "$APP" && mkdir -p "$APP"
+cp "$SRC"/applications/solvers/multiphase/interFoam/*.[CH] "$APP/"
+sed -i '/#include "fvcSmooth.H"/a\
+#include "interfaceGravity.H"' "$APP/interFoam.C"
+sed -i -e '0,/fvVectorMatrix UEqn/s//const surfaceScalarField ghInterface\
+    (\
+        floatfoamGravityGh(alpha1, gh, ghf, g, pimple.dict())\
+    );\
+\
+    fvVectorMatrix UEqn/' -e 's/- ghf\*fvc::snGrad(rho)/- ghInterface*fvc::snGrad(rho)/' "$APP/UEqn.H"
+sed -i 's/- ghf\*fvc::snGrad(rho)/- ghInterface*fvc::snGrad(rho)/' "$APP/pEqn.H"
+if [ "$(cat "$APP/UEqn.H" "$APP/pEqn.H" | grep -c 'ghInterface\*fvc::snGrad(rho)')" != 2 ] ||
+   [ "$(grep -c 'interfaceGravity.H' "$APP/interFoam.C")" != 1 ] ||
+   [ "$(grep -c 'floatfoamGravityGh' "$APP/UEqn.H")" != 1 ]; then
+  echo "build_solver: interFoam's gravity term is not where the edit expects it" >&2
+  exit 1
+fi
+OBJECT_ID="$FLAGS $(cat "$VOF"/*.H "$APP"/*.[CH] src/solver/*.H | sha256sum | cut -c1-16)"
 OFLAGS=$OUT/.interFoam.o.flags  # the flags and the VoF/ interFoam.o was compiled with
 if [ ! -f "$OUT/interFoam.o" ] || [ "$(cat "$OFLAGS" 2>/dev/null)" != "$OBJECT_ID" ]; then
-  app=$(realpath "$SRC/applications/solvers/multiphase/interFoam")
+  app=$(realpath "$APP")
+  own=$(realpath src/solver)
   vof=$(realpath "$VOF")
   echo "build_solver: compiling interFoam with -fno-tree-vectorize (about a minute)"
   # shellcheck disable=SC2086  # word splitting of the flag lists is intended
-  (cd "$app" && g++ $FLAGS -I. -I"$vof" -I"$S/transportModels" $includes -c interFoam.C \
+  (cd "$app" && g++ $FLAGS -I. -I"$vof" -I"$own" -I"$S/transportModels" $includes -c interFoam.C \
      -o "$(realpath -m "$OLDPWD/$OUT/interFoam.o.tmp")")
   mv -f "$OUT/interFoam.o.tmp" "$OUT/interFoam.o" && echo "$OBJECT_ID" > "$OFLAGS"
 fi

@@ -125,6 +125,10 @@ class RunSettings:
                                              " between the body and the nearest held wall)")
     solver: str | None = spec(None, kind=str, doc="interFoam to run (default: floatfoam's)")
     static_body: bool = spec(False, kind=bool, doc="hold the body still (still-water test)")
+    interface_gravity: bool = spec(False, kind=bool, added=True,
+                                   doc="the gravity term's density jump taken at the free "
+                                   "surface's height instead of the face's centre (floatfoam's "
+                                   "interFoam, src/solver/interfaceGravity.H)")
     # a turn that shears the distances' zone past what its cells take (on the morphing mesh
     # alone the 3D ellipsoid gives out 53° after its release; docs/morphing.md) meets a new
     # mesh first
