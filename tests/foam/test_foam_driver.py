@@ -211,6 +211,21 @@ def test_prepare_refuses_resumes_and_forces(tmp_path, case):
     assert all(name.startswith("coarse.old-") for name in moved[1:])
 
 
+def test_a_solver_without_the_gravity_at_the_surface_is_refused_before_anything_is_written(
+        tmp_path):
+    """run.interface_gravity asks for floatfoam's interFoam (src/solver/interfaceGravity.H):
+    Debian's would ignore PIMPLE's switch. One line naming the setting, nothing written."""
+    case = load_case("cylinder_heave", [*STOCK, "run.interface_gravity=true"])
+    with pytest.raises(InputError) as err:
+        resolve(case, "coarse", 1, build_dir=tmp_path)
+    message = str(err.value)
+    assert "\n" not in message and "run.interface_gravity" in message
+    assert "/usr/bin/interFoam" in message
+    assert not any(tmp_path.iterdir())
+    resolve(load_case("cylinder_heave", ["run.interface_gravity=true"]), "coarse", 1,
+            build_dir=tmp_path)  # floatfoam's own has it
+
+
 
 
 def heave(end_time: float, interval: float = 0.05):

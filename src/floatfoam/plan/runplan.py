@@ -17,7 +17,12 @@ from floatfoam.plan import zone
 from floatfoam.plan.level import level_index
 from floatfoam.plan.morphing import check_morphing, scaled_morphing
 from floatfoam.plan.release import end_time_of, mesh_pose, release_state, smaller_steps
-from floatfoam.plan.stamps import check_layered_solver, settings_digest, solver_path
+from floatfoam.plan.stamps import (
+    check_interface_gravity_solver,
+    check_layered_solver,
+    settings_digest,
+    solver_path,
+)
 from floatfoam.tank import Pose
 
 
@@ -81,6 +86,7 @@ def resolve(case: Case, level: str = "coarse", np_: int = 1, *,
     run = smaller_steps(case, divisor)
     if solver:
         solver_path(run)  # refused before anything is done when missing
+        check_interface_gravity_solver(run)
     if equilibrium is None:
         from floatfoam.hydrostatics.theory import equilibrium as solve
 

@@ -178,6 +178,23 @@ def has_body_velocity(case: Case) -> bool:
     return solver_has(case, BODY_VELOCITY)
 
 
+#: floatfoam's gravity term at the free surface's height (src/solver/interfaceGravity.H), which
+#: PIMPLE's ``interfaceGravity`` (``run.interface_gravity``) switches on
+INTERFACE_GRAVITY = "interfaceGravity"
+
+
+def check_interface_gravity_solver(case: Case) -> None:
+    """InputError when ``run.interface_gravity`` is on and the interFoam to run lacks it
+    (another build, ``run.solver``, or floatfoam's own built before it): it would ignore the
+    setting."""
+    if not case.settings.run.interface_gravity or solver_has(case, INTERFACE_GRAVITY):
+        return
+    raise InputError(f"run.interface_gravity = true: run.solver = "
+                     f"{str(solver_path(case))!r} lacks floatfoam's gravity term at the free "
+                     "surface (src/solver/interfaceGravity.H): valid is floatfoam's interFoam "
+                     "(`make setup` builds it) or run.interface_gravity = false")
+
+
 def check_layered_solver(case: Case) -> None:
     """InputError when the interFoam to run (:func:`solver_path`) lacks floatfoam's layered
     motion, which the run's mesh takes: another build (``run.solver``), or floatfoam's own
