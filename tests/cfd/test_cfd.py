@@ -160,9 +160,9 @@ def test_still_water_across_tilted_cells_with_the_gravity_at_the_surface(tmp_pat
     docs/studies/interface-gravity.md, and the same at the surface on 1): at the face's centre
     385 mm/s in the interface cells and 3.5 mm/s below the free-surface band; at the surface
     4.5 mm/s and 0.017 mm/s (rest to round-off until 0.3 s, then a grid-scale mode near the
-    body's wall grows and settles below 1 mm/s). The bounds lie between the two: 20 mm/s in the interface cells
-    (4.4 × the one, a nineteenth of the other), 0.2 mm/s below the band (12 × and a
-    seventeenth)."""
+    body's wall grows and settles below 1 mm/s). The bounds lie between the two: 20 mm/s in
+    the interface cells (4.4 × the one, a nineteenth of the other), 0.2 mm/s below the band
+    (12 × and a seventeenth)."""
     case = load_case("cylinder_heave", ["run.end_time=1.0", "run.static_body=true",
                                         f"run.interface_gravity={str(surface).lower()}"])
     result = run_case(case, "coarse", 1, build_dir=tmp_path)
