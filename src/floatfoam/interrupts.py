@@ -52,9 +52,13 @@ def signals_interrupt():
 
     RECEIVED.clear()
     previous = {s: signal.signal(s, handler) for s in INTERRUPTS}
+    # a process started with them blocked (a parent's mask is inherited) would keep them
+    # pending to its end: they are unblocked within the block, the caller's mask put back after
+    mask = signal.pthread_sigmask(signal.SIG_UNBLOCK, INTERRUPTS)
     try:
         yield
     finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
         for s, h in previous.items():
             signal.signal(s, h)
 

@@ -1,6 +1,7 @@
 """The CLI: JSON keys, tables, and one-line errors with exit code 2 for bad input."""
 
 import json
+import signal
 import subprocess
 import sys
 
@@ -113,3 +114,29 @@ def test_decay_model_with_set_never_replaces_the_case_own_series(tmp_path, monke
     own = tmp_path / "sphere" / "decay_linear.csv"
     (other,) = (tmp_path / "sphere").glob("decay_linear_set-????????.csv")
     assert own.read_text() != other.read_text()
+
+
+INTERRUPTED_WHILE_BLOCKED = """
+import os, signal, time
+from floatfoam.interrupts import SignalInterruptError, signals_interrupt
+try:
+    with signals_interrupt():
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(5)
+    print("not interrupted")
+except SignalInterruptError as err:
+    print("raised", err)
+print("blocked after:", signal.SIGTERM in signal.pthread_sigmask(signal.SIG_BLOCK, ()))
+"""
+
+
+def test_a_command_started_with_the_interrupts_blocked_still_stops_on_them():
+    """A process inherits its parent's signal mask: started with SIGTERM blocked (a launcher
+    that blocks it), a command's SIGTERM still raises within ``signals_interrupt`` (else it
+    would stay pending to the command's end, which would then exit 0 as if never stopped), and
+    the caller's mask is back after it."""
+    done = subprocess.run([sys.executable, "-c", INTERRUPTED_WHILE_BLOCKED], capture_output=True,
+                          text=True, timeout=60, preexec_fn=lambda: signal.pthread_sigmask(
+                              signal.SIG_BLOCK, [signal.SIGTERM]))
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split("\n")[:2] == ["raised SIGTERM", "blocked after: True"]

@@ -85,8 +85,11 @@ class Child:
 
     def __init__(self, cmd: list[str], *, cwd, stdout, env: dict, keep_fds=()):
         parent = os.getpid()
-        blocked = signal.pthread_sigmask(signal.SIG_BLOCK, INTERRUPTS)
+        # the mask to put back, read without changing it: a pending interrupt's handler may
+        # raise from the call that blocks them, and the mask must not stay blocked then
+        mask = signal.pthread_sigmask(signal.SIG_BLOCK, ())
         try:
+            signal.pthread_sigmask(signal.SIG_BLOCK, INTERRUPTS)
             self.proc = subprocess.Popen(cmd, cwd=cwd, stdout=stdout, stderr=subprocess.STDOUT,
                                          env=env, start_new_session=True,
                                          preexec_fn=lambda: _child_setup(parent))
@@ -101,7 +104,7 @@ class Child:
                 stop_session(self.sid)
                 raise
         finally:
-            signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+            signal.pthread_sigmask(signal.SIG_SETMASK, mask)
 
     def poll(self) -> int | None:
         return self.proc.poll()
