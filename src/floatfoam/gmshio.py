@@ -50,6 +50,12 @@ def surface_triangles(surface_tags) -> tuple[np.ndarray, np.ndarray]:
     """Triangles of the surfaces ``surface_tags`` as one compact (vertices, faces) mesh, nodes
     shared where the surfaces meet, every surface oriented like its neighbours (gmsh orients
     each surface's elements by its own parametrisation, not by the volume it bounds)."""
+    _, vertices, faces = surface_mesh(surface_tags)
+    return vertices, faces
+
+
+def surface_mesh(surface_tags) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`surface_triangles` with the gmsh tags of its vertices: (tags, vertices, faces)."""
     import gmsh
 
     patches = [gmsh.model.mesh.getElementsByType(TRIANGLE, abs(tag))[1].reshape(-1, 3)
@@ -57,7 +63,7 @@ def surface_triangles(surface_tags) -> tuple[np.ndarray, np.ndarray]:
     elements = np.concatenate(consistent_orientation(patches))
     tags, coords = node_table()
     used, inverse = np.unique(elements, return_inverse=True)
-    return coords[np.searchsorted(tags, used)], inverse.reshape(-1, 3)
+    return used, coords[np.searchsorted(tags, used)], inverse.reshape(-1, 3)
 
 
 def consistent_orientation(patches: list[np.ndarray]) -> list[np.ndarray]:

@@ -345,11 +345,15 @@ def test_a_symmetric_triangulated_body_in_the_half_domain(tmp_path):
                          path=tmp_path / "w.msh")
     assert whole["kind"] == "3d"
     # about half the cells; the half body patch, closed by its mirror image, holds the
-    # immersed volume the whole tank's does within 0.5 % (measured −3.9 % and −4.2 % of the
-    # exact sphere's: the chords of 33 mm facets on a 0.1 m radius, remeshed apart)
+    # immersed volume the whole tank's does within 0.5 %, each within 0.5 % of the exact
+    # sphere's (measured +0.14 % and +0.11 %: the facets moved out to the volume of the
+    # triangles given, surface3d.keep_volume; the chords of 33 mm facets on a 0.1 m radius
+    # alone lose 4 %)
     assert 0.45 < result["cells"] / whole["cells"] < 0.55
     assert result["body_patch"]["immersed_error"] == pytest.approx(
         whole["body_patch"]["immersed_error"], abs=0.005)
+    assert abs(result["body_patch"]["immersed_error"]) < 0.005
+    assert abs(whole["body_patch"]["immersed_error"]) < 0.005
 
 @pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")
 @pytest.mark.parametrize("half", [True, False])
@@ -435,11 +439,16 @@ def test_prism_layers_at_an_ellipsoid_in_the_half_domain(tmp_path, release, axis
     assert np.abs(plane[:, axis]).max() < 1e-12  # the layers' side faces among them
     assert (np.abs(prisms[..., axis]) < 1e-12).any()  # ... which the layers reach
     # the body's nodes, remeshed on OpenCASCADE's triangles, moved back onto the ellipsoid
+    # and then out past it until the facets hold its volume (surface3d.keep_volume): each just
+    # outside it (measured 1.0002–1.0053 in the ellipsoid's own scale), the immersed volume
+    # exact within 1e-4 (measured −7e-7 and −1.7e-5; on the ellipsoid alone −0.4 %)
     from floatfoam.bodies.geometry import rotation
 
     where = pose(case, "release", equilibrium(case))
     local = (_group_nodes(tmp_path / "e.msh", "body") - [0.0, 0.0, where.z_c]) \
         @ rotation(where.heel, where.trim)
-    assert np.abs(np.sum((local / case.body.axes) ** 2, axis=1) - 1.0).max() < 1e-9
+    scale = np.sqrt(np.sum((local / case.body.axes) ** 2, axis=1))
+    assert 1.0 < scale.min() and scale.max() < 1.01
+    assert abs(result["body_patch"]["immersed_error"]) < 1e-4
     quality = convert_and_check(tmp_path / "e.msh", tmp_path / "foam")
     assert quality["mesh_ok"] and quality["cells"] == result["cells"]

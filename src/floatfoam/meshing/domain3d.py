@@ -44,6 +44,8 @@ import numpy as np
 
 from floatfoam import gmshio
 from floatfoam.bodies.expression import compile_expression
+from floatfoam.bodies.geometry import mesh_volume
+from floatfoam.bodies.shapes import Ellipsoid
 from floatfoam.errors import InputError
 from floatfoam.meshing import sections
 from floatfoam.meshing.body_surface import place
@@ -52,8 +54,10 @@ from floatfoam.meshing.surface3d import (
     FEATURE_ANGLE,
     PLANE_EPS,
     VERBOSITY,
+    _enclosed,
     ellipsoid_normals,
     half_surface,
+    keep_volume,
     onto_ellipsoid,
     relax_on_surface,
     solid_surface,
@@ -109,11 +113,25 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
         gmsh.model.mesh.generate(3)
         if surface is not None:  # remeshed on OpenCASCADE's triangles: back onto the solid
             onto_ellipsoid(gmsh, body, body_surfaces, where, layer_heights(spec)[0])
+        if body.given_by_triangles or surface is not None:  # the facets out to the volume
+            keep_volume(gmsh, body_surfaces, _volume_of(body, vertices, faces, half), half,
+                        layer_heights(spec)[0] if spec.layers_3d else None)
         groups = _physical_groups(gmsh, volumes, body_surfaces, tank, half, layers)
         gmshio.write_msh22(path)
         result = summary(gmsh, groups, path)
         result["body_triangles"] = gmshio.surface_triangles(body_surfaces)
     return result
+
+
+def _volume_of(body, vertices: np.ndarray, faces: np.ndarray, half: str | None) -> float:
+    """The volume the body's remeshed surface must enclose: an ellipsoid's exact one, else
+    that of the triangles given (an implicit body's on F = 0); half of it with ``half``."""
+    if isinstance(body, Ellipsoid):
+        volume = 4.0 / 3.0 * math.pi * float(np.prod(body.axes))
+        return volume / 2.0 if half else volume
+    if half:  # the half surface, closed by the plane
+        return abs(_enclosed(vertices, faces))
+    return abs(mesh_volume(vertices, faces))
 
 
 def _solid_body(gmsh, body, where: Pose, tank: Tank, spec: MeshSpec,
