@@ -54,8 +54,8 @@ from floatfoam.meshing.surface3d import (
     FEATURE_ANGLE,
     PLANE_EPS,
     VERBOSITY,
-    _enclosed,
     ellipsoid_normals,
+    enclosed_volume,
     half_surface,
     keep_volume,
     onto_ellipsoid,
@@ -130,7 +130,7 @@ def _volume_of(body, vertices: np.ndarray, faces: np.ndarray, half: str | None) 
         volume = 4.0 / 3.0 * math.pi * float(np.prod(body.axes))
         return volume / 2.0 if half else volume
     if half:  # the half surface, closed by the plane
-        return abs(_enclosed(vertices, faces))
+        return abs(enclosed_volume(vertices, faces))
     return abs(mesh_volume(vertices, faces))
 
 

@@ -178,7 +178,7 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
     edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
     edges = np.unique(np.sort(edges, axis=1), axis=0)
     degree = np.bincount(edges.ravel(), minlength=n).astype(float)
-    if _enclosed(v, faces) < 0.0:
+    if enclosed_volume(v, faces) < 0.0:
         faces = faces[:, ::-1]
     move = np.zeros(n)
     for _ in range(3):  # c by Newton's step on the enclosed volume, linear in it to O(move²)
@@ -201,7 +201,7 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
         bulge = np.sum((moved - mean) * normals, axis=1)
         bulge[held] = 0.0
         gain = float(np.sum(area * bulge))
-        missing = volume - _enclosed(moved, faces)
+        missing = volume - enclosed_volume(moved, faces)
         if gain == 0.0 or abs(missing) <= 1e-9 * volume:
             break
         step = missing / gain * bulge
@@ -220,7 +220,7 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
     return largest
 
 
-def _enclosed(vertices: np.ndarray, faces: np.ndarray) -> float:
+def enclosed_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
     """The volume a closed surface of outward triangles encloses, by ∮ z n_z dA: a half surface
     open along a vertical plane x = 0 or y = 0 too (n_z vanishes on that plane)."""
     c = vertices[faces]
