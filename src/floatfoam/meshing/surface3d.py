@@ -80,7 +80,8 @@ def half_surface(vertices: np.ndarray, faces: np.ndarray, half: str, spec: MeshS
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """A symmetric body's triangles on the side ``half`` ≥ 0 (:func:`floatfoam.bodies.mirror
     .clip_half`), and the normals its prism layers take: None (gmsh's own, as in the whole
-    tank) where the surface meets the plane square to it, as a prism-shaped hull does; else
+    tank) where the surface stays square to the plane within a body cell of it, as a
+    prism-shaped hull does; else
     per triangle corner (:func:`floatfoam.bodies.mirror.corner_normals`, lying in the plane
     at its edge there, where gmsh's, from one side only, would lean out of it)."""
     from floatfoam.bodies.mirror import clip_half, corner_normals, into_plane
@@ -91,7 +92,11 @@ def half_surface(vertices: np.ndarray, faces: np.ndarray, half: str, spec: MeshS
         return vertices, faces, None
     normals = corner_normals(vertices, faces, math.radians(FEATURE_ANGLE))
     corners = vertices[faces]
-    if float(np.abs(normals[..., k][corners[..., k] == 0.0]).max(initial=0.0)) < 1e-9:
+    # square to the plane as far as a body cell from it (a prism-shaped hull), not only on it:
+    # a surface that bends away from the plane there (a superellipsoid, flat in x at x = 0
+    # to 4e-15 and curved a cell away) gets remeshed triangles whose own normals lean out
+    near = np.abs(corners[..., k]) <= spec.body_size_3d
+    if float(np.abs(normals[..., k][near]).max(initial=0.0)) < 1e-9:
         return vertices, faces, None
     return vertices, faces, into_plane(normals, corners, k)
 
