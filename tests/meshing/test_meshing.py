@@ -495,3 +495,37 @@ def test_a_curved_stl_heeled_meshes_in_the_half_tank_with_its_layers(tmp_path):
     assert abs(result["body_patch"]["immersed_error"]) < 1e-4
     quality = convert_and_check(tmp_path / "b.msh", tmp_path / "foam")
     assert quality["mesh_ok"] and quality["cells"] == result["cells"]
+
+
+SPAR = """[body]
+shape = "implicit"
+expression = "maximum(x**2 + y**2 - 0.0225, abs(z) - 0.3)"
+bounds = [[-0.16, -0.16, -0.31], [0.16, 0.16, 0.31]]
+resolution = 60
+[mass]
+density = 600.0
+cog = [0.0, 0.0, -0.15]
+gyradius = [0.2, 0.2, 0.1]
+[release]
+heave = 0.02
+"""
+
+
+@pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")
+def test_a_body_whose_layers_gmsh_cannot_make_at_its_edges_is_meshed_with_wider_edges(tmp_path):
+    """A spar (a capped vertical cylinder, implicit: its rims turn by 90°): gmsh's prism layers
+    at its surface edged at 20° fail ("overlapping facets"), and at 30°; at 45° they mesh. The
+    mesh is made at the first angle that works (meshing.domain3d.domain_3d), says so in a
+    note, and is checkMesh-clean with its layers and its volume."""
+    from floatfoam.foam.meshcheck import convert_and_check
+    from floatfoam.meshing.domains import format_domain
+
+    (tmp_path / "case.toml").write_text(SPAR)
+    result = build_domain(load_case(str(tmp_path)), "coarse", path=tmp_path / "s.msh")
+    assert result["surface_note"].startswith("gmsh meshed the body's surface with turns "
+                                             "sharper than 45° as edges (as asked, it failed: ")
+    assert "note: gmsh meshed" in format_domain(result)
+    assert result["cell_types"]["Prism"] >= 3 * result["patches"]["body"]
+    assert abs(result["body_patch"]["immersed_error"]) < 1e-3  # measured +1.5e-4
+    quality = convert_and_check(tmp_path / "s.msh", tmp_path / "foam")
+    assert quality["mesh_ok"] and quality["cells"] == result["cells"]

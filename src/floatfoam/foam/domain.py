@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import shutil
+import sys
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -159,6 +160,8 @@ def generate(mesh: RunMesh, case: Case, level: str, equilibrium, folder: Path, *
                           equilibrium=equilibrium, where=where)
     cells = int(result["cells"])
     _check_memory(cells, level, local, "[mesh.gmsh] sizes (body_cells, growth)")
+    if result.get("surface_note"):  # meshed otherwise than asked (meshing.domain3d)
+        print(f"[{case.name}/{level}] note: {result['surface_note']}", file=sys.stderr)
     return replace(mesh, cells=cells, msh=Path(result["path"]),
                    immersed_error=result["body_patch"]["immersed_error"])
 

@@ -37,7 +37,7 @@ own normals there, from the triangles on one side only, leaned 0.4 mm out of it.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -46,12 +46,14 @@ from floatfoam import gmshio
 from floatfoam.bodies.expression import compile_expression
 from floatfoam.bodies.geometry import mesh_volume
 from floatfoam.bodies.shapes import Ellipsoid
-from floatfoam.errors import InputError
+from floatfoam.errors import ComputationError, InputError
+from floatfoam.interrupts import RECEIVED
 from floatfoam.meshing import sections
 from floatfoam.meshing.body_surface import place
 from floatfoam.meshing.levels import MeshSpec
 from floatfoam.meshing.surface3d import (
     FEATURE_ANGLE,
+    FEATURE_ANGLES,
     PLANE_EPS,
     VERBOSITY,
     ellipsoid_normals,
@@ -77,6 +79,39 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
     Returns a summary: ``path``, ``cells``, ``cell_types``, ``patches`` (faces per patch) and
     ``body_triangles`` ((vertices, faces) of the body patch, earth frame, for volume checks).
     """
+    attempts = [(angle, spec) for angle in FEATURE_ANGLES] if case.body.given_by_triangles \
+        else [(FEATURE_ANGLE, spec)]
+    if spec.layers_3d:  # then without the prism layers
+        attempts += [(angle, replace(spec, layers_3d=0)) for angle, _ in attempts]
+    failures = []
+    for angle, tried in attempts:
+        try:
+            result = _domain_3d(case, tried, tank, where, path, half, angle)
+        except Exception as err:  # noqa: BLE001 - gmsh raises Exception itself, saying why
+            # what gmsh raises, and an empty patch; an interrupt wrapped by gmsh's ctypes
+            # call stops, it is not retried
+            if type(err) not in (Exception, RuntimeError) or RECEIVED:
+                raise
+            failures.append(f"{err}")
+            continue
+        if failures:
+            result["surface_note"] = (
+                f"gmsh meshed the body's surface with turns sharper than {angle:g}° as edges"
+                + ("" if tried.layers_3d == spec.layers_3d else " and without prism layers")
+                + f" (as asked, it failed: {failures[0]})")
+        return result
+    angles = ", ".join(f"{a:g}" for a, _ in attempts[:len(attempts) // (2 if spec.layers_3d
+                                                                          else 1)])
+    raise ComputationError(f"gmsh could not mesh the body's surface ({failures[0]}), with its "
+                           f"edges at turns sharper than {angles}°"
+                           + (", with and without prism layers" if spec.layers_3d else "")
+                           + ": a finer [body] resolution, or a cleaner STL")
+
+
+def _domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path, half: str | None,
+               angle: float) -> dict:
+    """:func:`domain_3d` with the body's surface edged at turns sharper than ``angle``
+    (degrees)."""
     from floatfoam.meshing.planar import summary
 
     body = case.body
@@ -91,9 +126,9 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
                 vertices = relax_on_surface(vertices, faces, func, spec.span)
             normals = None
             if half:
-                vertices, faces, normals = half_surface(vertices, faces, half, spec)
-            body_surfaces, volumes, layers, column = _discrete_body(gmsh, vertices, faces, where,
-                                                           tank, spec, half, normals=normals)
+                vertices, faces, normals = half_surface(vertices, faces, half, spec, angle)
+            body_surfaces, volumes, layers, column = _discrete_body(
+                gmsh, vertices, faces, where, tank, spec, half, normals=normals, angle=angle)
         elif spec.layers_3d:  # an ellipsoid's surface meshed by OpenCASCADE, then as triangles
             vertices, faces = surface
             body_surfaces, volumes, layers, column = _discrete_body(
@@ -115,7 +150,7 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
             onto_ellipsoid(gmsh, body, body_surfaces, where, layer_heights(spec)[0])
         if body.given_by_triangles or surface is not None:  # the facets out to the volume
             keep_volume(gmsh, body_surfaces, _volume_of(body, vertices, faces, half), half,
-                        layer_heights(spec)[0] if spec.layers_3d else None)
+                        layer_heights(spec)[0] if spec.layers_3d else None, angle)
         groups = _physical_groups(gmsh, volumes, body_surfaces, tank, half, layers)
         gmshio.write_msh22(path)
         result = summary(gmsh, groups, path)
@@ -176,8 +211,8 @@ def layer_heights(spec: MeshSpec) -> list[float]:
 
 
 def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank, spec: MeshSpec,
-                   half: str | None = None, normals: np.ndarray | None = None
-                   ) -> tuple[list[int], int, Layers]:
+                   half: str | None = None, normals: np.ndarray | None = None,
+                   angle: float = FEATURE_ANGLE) -> tuple[list[int], int, Layers]:
     """A triangulated body as reparametrised discrete surfaces, its prism layers if
     ``spec.layers_3d``, and the tank around them (its half ``half`` ≥ 0, the body's half
     surface cut out of that plane). ``normals`` (body frame, one per vertex (N, 3) or per
@@ -192,7 +227,7 @@ def _discrete_body(gmsh, vertices, faces, where: Pose, tank: Tank, spec: MeshSpe
     gmsh.model.mesh.addNodes(2, surface, list(range(1, n + 1)), vertices.ravel().tolist())
     gmsh.model.mesh.addElementsByType(surface, gmshio.TRIANGLE, [],
                                       (faces + 1).ravel().tolist())
-    gmsh.model.mesh.classifySurfaces(math.radians(FEATURE_ANGLE), True, True, math.pi)
+    gmsh.model.mesh.classifySurfaces(math.radians(angle), True, True, math.pi)
     gmsh.model.mesh.createGeometry()
     body_surfaces = [tag for _, tag in gmsh.model.getEntities(2)]
     geo = gmsh.model.geo

@@ -121,4 +121,5 @@ def format_domain(result: dict) -> str:
         f"  body patch immersed volume {bp['immersed_discrete']:.6g} m³ (exact body "
         f"{bp['immersed_exact']:.6g}, {bp['immersed_error']:+.2e})",
         f"  written {result['path']}",
+        *([f"  note: {result['surface_note']}"] if result.get("surface_note") else []),
     ])

@@ -22,6 +22,9 @@ from floatfoam.meshing.levels import MeshSpec
 from floatfoam.tank import Pose
 
 FEATURE_ANGLE = 20.0  # degrees: sharper turns between triangles stay edges (pontoon: 25.6°)
+# where gmsh cannot parametrise or layer the surface so edged, the angles tried after it: a
+# Wigley hull with a deck meshed at 30° (not 20°), an implicit spar's layers at 45°
+FEATURE_ANGLES = (FEATURE_ANGLE, 30.0, 45.0)
 
 
 VERBOSITY = 1  # gmsh messages: 1 errors only; 4 to see where the time goes
@@ -76,7 +79,8 @@ def _ellipsoid_surface(body: bodies.Ellipsoid, spec: MeshSpec, half: str | None
     return vertices, triangles
 
 
-def half_surface(vertices: np.ndarray, faces: np.ndarray, half: str, spec: MeshSpec
+def half_surface(vertices: np.ndarray, faces: np.ndarray, half: str, spec: MeshSpec,
+                 angle: float = FEATURE_ANGLE
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """A symmetric body's triangles on the side ``half`` ≥ 0 (:func:`floatfoam.bodies.mirror
     .clip_half`), and the normals its prism layers take: None (gmsh's own, as in the whole
@@ -90,7 +94,7 @@ def half_surface(vertices: np.ndarray, faces: np.ndarray, half: str, spec: MeshS
     vertices, faces = clip_half(vertices, faces, k)
     if not spec.layers_3d:
         return vertices, faces, None
-    normals = corner_normals(vertices, faces, math.radians(FEATURE_ANGLE))
+    normals = corner_normals(vertices, faces, math.radians(angle))
     corners = vertices[faces]
     # square to the plane as far as a body cell from it (a prism-shaped hull), not only on it:
     # a surface that bends away from the plane there (a superellipsoid, flat in x at x = 0
@@ -164,21 +168,21 @@ PLANE_EPS = 2e-5  # m: OpenCASCADE pads bounding boxes by up to ~1e-5 m (a 2 m t
 
 
 def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
-                first: float | None) -> float:
+                first: float | None, angle: float = FEATURE_ANGLE) -> float:
     """Move the nodes of the body's remeshed surfaces along their normals until the surface
     encloses ``volume`` (m³: the body's, half of it with ``half``, whose plane closes the half
     surface). Facets on a curved surface are its chords and cut it short: a sphere meshed at
     12 cells across loses 1 % of its volume, and its waterplane, the heave's stiffness, 0.7 %.
     Each node moves by c·w, w its bulge (its height above its neighbours' mean along its
     normal: ~h²κ/2, nil where the surface is flat, negative where it is hollow), a node on a
-    turn sharper than :data:`FEATURE_ANGLE` not at all (a crease, which the facets keep), c
+    turn sharper than ``angle`` (degrees) not at all (a crease, which the facets keep), c
     the one factor that gives the volume. Nodes in the symmetry plane stay in it. ``first``:
     the first prism layer's height, which the move must leave room for. Returns the largest
     move (m)."""
     tags, v, faces = gmshio.surface_mesh(surfaces)
     k = "xy".index(half) if half else None
     on_plane = np.abs(v[:, k]) < PLANE_EPS if half else np.zeros(len(v), dtype=bool)
-    held = _crease_nodes(v, faces, math.radians(FEATURE_ANGLE))
+    held = _crease_nodes(v, faces, math.radians(angle))
     n = len(v)
     edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
     edges = np.unique(np.sort(edges, axis=1), axis=0)
