@@ -51,11 +51,13 @@ def signals_interrupt():
         raise SignalInterruptError(signum)
 
     RECEIVED.clear()
-    previous = {s: signal.signal(s, handler) for s in INTERRUPTS}
     # a process started with them blocked (a parent's mask is inherited) would keep them
-    # pending to its end: they are unblocked within the block, the caller's mask put back after
-    mask = signal.pthread_sigmask(signal.SIG_UNBLOCK, INTERRUPTS)
+    # pending to its end: they are unblocked within the block, the caller's mask put back
+    # after (read first without a change: one pending raises from the unblocking call)
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, ())
+    previous = {s: signal.signal(s, handler) for s in INTERRUPTS}
     try:
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, INTERRUPTS)
         yield
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, mask)

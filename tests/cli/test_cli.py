@@ -117,26 +117,33 @@ def test_decay_model_with_set_never_replaces_the_case_own_series(tmp_path, monke
 
 
 INTERRUPTED_WHILE_BLOCKED = """
-import os, signal, time
+import os, signal, sys, time
 from floatfoam.interrupts import SignalInterruptError, signals_interrupt
+if sys.argv[1] == "before":  # pending when the block starts
+    os.kill(os.getpid(), signal.SIGTERM)
 try:
     with signals_interrupt():
-        os.kill(os.getpid(), signal.SIGTERM)
+        if sys.argv[1] == "within":
+            os.kill(os.getpid(), signal.SIGTERM)
         time.sleep(5)
     print("not interrupted")
 except SignalInterruptError as err:
     print("raised", err)
 print("blocked after:", signal.SIGTERM in signal.pthread_sigmask(signal.SIG_BLOCK, ()))
+print("handler after:", signal.getsignal(signal.SIGTERM) == signal.SIG_DFL)
 """
 
 
-def test_a_command_started_with_the_interrupts_blocked_still_stops_on_them():
+@pytest.mark.parametrize("when", ["within", "before"])
+def test_a_command_started_with_the_interrupts_blocked_still_stops_on_them(when):
     """A process inherits its parent's signal mask: started with SIGTERM blocked (a launcher
-    that blocks it), a command's SIGTERM still raises within ``signals_interrupt`` (else it
-    would stay pending to the command's end, which would then exit 0 as if never stopped), and
-    the caller's mask is back after it."""
-    done = subprocess.run([sys.executable, "-c", INTERRUPTED_WHILE_BLOCKED], capture_output=True,
-                          text=True, timeout=60, preexec_fn=lambda: signal.pthread_sigmask(
-                              signal.SIG_BLOCK, [signal.SIGTERM]))
+    that blocks it), a command's SIGTERM, sent within ``signals_interrupt`` or pending when it
+    starts, still raises there (else it would stay pending to the command's end, which would
+    then exit 0 as if never stopped), and the caller's mask and handler are back after it."""
+    done = subprocess.run([sys.executable, "-c", INTERRUPTED_WHILE_BLOCKED, when],
+                          capture_output=True, text=True, timeout=60,
+                          preexec_fn=lambda: signal.pthread_sigmask(signal.SIG_BLOCK,
+                                                                    [signal.SIGTERM]))
     assert done.returncode == 0, done.stderr
-    assert done.stdout.split("\n")[:2] == ["raised SIGTERM", "blocked after: True"]
+    assert done.stdout.split("\n")[:3] == ["raised SIGTERM", "blocked after: True",
+                                           "handler after: True"]

@@ -14,7 +14,8 @@ the body, so the radiated waves keep more of their resolution.
 
 Bodies with an exact geometry are OpenCASCADE solids cut out of the tank. Bodies given as
 triangles (``stl``, ``implicit``) are classified into smooth patches (feature angle
-:data:`~floatfoam.meshing.surface3d.FEATURE_ANGLE`), reparametrised and remeshed at the same
+:data:`~floatfoam.meshing.surface3d.FEATURE_ANGLE`; the wider ones of ``FEATURE_ANGLES`` where
+gmsh fails so), reparametrised and remeshed at the same
 sizes, and the tank is built around them with gmsh's built-in kernel; an implicit body's
 marching-cubes triangles are first relaxed onto F = 0
 (:func:`~floatfoam.meshing.surface3d.relax_on_surface`), their slivers defeat the
@@ -57,7 +58,6 @@ from floatfoam.meshing.surface3d import (
     PLANE_EPS,
     VERBOSITY,
     ellipsoid_normals,
-    enclosed_volume,
     half_surface,
     keep_volume,
     onto_ellipsoid,
@@ -77,10 +77,14 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
     y = 0).
 
     Returns a summary: ``path``, ``cells``, ``cell_types``, ``patches`` (faces per patch) and
-    ``body_triangles`` ((vertices, faces) of the body patch, earth frame, for volume checks).
+    ``body_triangles`` ((vertices, faces) of the body patch, earth frame, for volume checks),
+    and ``surface_note`` when a body given by triangles was meshed otherwise than asked: its
+    edges at a wider angle (:data:`~floatfoam.meshing.surface3d.FEATURE_ANGLES`) or without
+    prism layers, where gmsh could not make it so.
     """
-    attempts = [(angle, spec) for angle in FEATURE_ANGLES] if case.body.given_by_triangles \
-        else [(FEATURE_ANGLE, spec)]
+    if not case.body.given_by_triangles:  # an OpenCASCADE solid: meshed as it is asked
+        return _domain_3d(case, spec, tank, where, path, half, FEATURE_ANGLE)
+    attempts = [(angle, spec) for angle in FEATURE_ANGLES]
     if spec.layers_3d:  # then without the prism layers
         attempts += [(angle, replace(spec, layers_3d=0)) for angle, _ in attempts]
     failures = []
@@ -149,7 +153,7 @@ def _domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path, half: 
         if surface is not None:  # remeshed on OpenCASCADE's triangles: back onto the solid
             onto_ellipsoid(gmsh, body, body_surfaces, where, layer_heights(spec)[0])
         if body.given_by_triangles or surface is not None:  # the facets out to the volume
-            keep_volume(gmsh, body_surfaces, _volume_of(body, vertices, faces, half), half,
+            keep_volume(gmsh, body_surfaces, _volume_of(body, half), half,
                         layer_heights(spec)[0] if spec.layers_3d else None, angle)
         groups = _physical_groups(gmsh, volumes, body_surfaces, tank, half, layers)
         gmshio.write_msh22(path)
@@ -158,15 +162,15 @@ def _domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path, half: 
     return result
 
 
-def _volume_of(body, vertices: np.ndarray, faces: np.ndarray, half: str | None) -> float:
+def _volume_of(body, half: str | None) -> float:
     """The volume the body's remeshed surface must enclose: an ellipsoid's exact one, else
-    that of the triangles given (an implicit body's on F = 0); half of it with ``half``."""
+    that of the body's triangles, which the theory takes (an implicit body's as marching cubes
+    give them); half of it with ``half``."""
     if isinstance(body, Ellipsoid):
         volume = 4.0 / 3.0 * math.pi * float(np.prod(body.axes))
-        return volume / 2.0 if half else volume
-    if half:  # the half surface, closed by the plane
-        return abs(enclosed_volume(vertices, faces))
-    return abs(mesh_volume(vertices, faces))
+    else:
+        volume = abs(mesh_volume(body.vertices, body.faces))
+    return volume / 2.0 if half else volume
 
 
 def _solid_body(gmsh, body, where: Pose, tank: Tank, spec: MeshSpec,

@@ -22,8 +22,8 @@ from floatfoam.meshing.levels import MeshSpec
 from floatfoam.tank import Pose
 
 FEATURE_ANGLE = 20.0  # degrees: sharper turns between triangles stay edges (pontoon: 25.6°)
-# where gmsh cannot parametrise or layer the surface so edged, the angles tried after it: a
-# Wigley hull with a deck meshed at 30° (not 20°), an implicit spar's layers at 45°
+# where gmsh cannot parametrise or layer the surface so edged, the angles tried after it (an
+# implicit spar's layers are made at 45°: meshing.domain3d.domain_3d)
 FEATURE_ANGLES = (FEATURE_ANGLE, 30.0, 45.0)
 
 
@@ -183,6 +183,13 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
     k = "xy".index(half) if half else None
     on_plane = np.abs(v[:, k]) < PLANE_EPS if half else np.zeros(len(v), dtype=bool)
     held = _crease_nodes(v, faces, math.radians(angle))
+    if half:  # a crease the surface makes with its mirror image (a keel, a stem) is held too
+        c = v[faces]
+        normal = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
+        normal /= np.linalg.norm(normal, axis=1)[:, None]
+        steep = np.abs(normal[:, k]) > math.sin(math.radians(angle) / 2.0)
+        for j in range(3):
+            held[faces[steep, j][on_plane[faces[steep, j]]]] = True
     n = len(v)
     edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
     edges = np.unique(np.sort(edges, axis=1), axis=0)
@@ -200,7 +207,9 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
         area = np.linalg.norm(normals, axis=1) / 3.0  # a third of the ring's area, ~
         if half:
             normals[on_plane, k] = 0.0
-        normals /= np.linalg.norm(normals, axis=1)[:, None]
+        length = np.linalg.norm(normals, axis=1)
+        normals = np.divide(normals, length[:, None], out=np.zeros_like(normals),
+                            where=length[:, None] > 0.0)
         mean = np.zeros_like(moved)
         np.add.at(mean, edges[:, 0], moved[edges[:, 1]])
         np.add.at(mean, edges[:, 1], moved[edges[:, 0]])
@@ -208,10 +217,13 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
         if half:  # the mirrored neighbours too: their mean lies in the plane
             mean[on_plane, k] = 0.0
         bulge = np.sum((moved - mean) * normals, axis=1)
-        bulge[held] = 0.0
+        bulge[held | (length == 0.0)] = 0.0
         gain = float(np.sum(area * bulge))
         missing = volume - enclosed_volume(moved, faces)
-        if gain == 0.0 or abs(missing) <= 1e-9 * volume:
+        # bulges that cancel (round-off on flat faces, or as much hollow as convex) give no
+        # direction to move in: stop rather than divide by them
+        if abs(gain) <= 0.1 * float(np.sum(area * np.abs(bulge))) \
+                or abs(missing) <= 1e-9 * volume:
             break
         step = missing / gain * bulge
         v = moved + step[:, None] * normals
@@ -220,7 +232,7 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
     if first is not None and largest > 0.5 * first:  # the first prism layer would fold
         raise InputError(f"mesh.gmsh.layers_height_3d: the first prism layer, {first * 1e3:.3g} "
                          f"mm, is too thin for the body's nodes, which move {largest * 1e3:.3g} "
-                         "mm out to the body's volume; valid: a first layer over twice that "
+                         "mm to the body's volume; valid: a first layer over twice that "
                          "(fewer mesh.gmsh.layers_3d or a larger layers_height_3d)")
     if half:
         v[on_plane, k] = 0.0
