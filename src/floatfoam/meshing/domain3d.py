@@ -99,10 +99,11 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
             failures.append(f"{err}")
             continue
         if failures:
-            result["surface_note"] = (
+            result["surface_note"] = "; ".join(filter(None, [(
+
                 f"gmsh meshed the body's surface with turns sharper than {angle:g}° as edges"
                 + ("" if tried.layers_3d == spec.layers_3d else " and without prism layers")
-                + f" (as asked, it failed: {failures[0]})")
+                + f" (as asked, it failed: {failures[0]})"), result.get("surface_note")]))
         return result
     angles = ", ".join(f"{a:g}" for a, _ in attempts[:len(attempts) // (2 if spec.layers_3d
                                                                           else 1)])
@@ -152,13 +153,19 @@ def _domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path, half: 
         gmsh.model.mesh.generate(3)
         if surface is not None:  # remeshed on OpenCASCADE's triangles: back onto the solid
             onto_ellipsoid(gmsh, body, body_surfaces, where, layer_heights(spec)[0])
+        note = None
         if body.given_by_triangles or surface is not None:  # the facets out to the volume
-            keep_volume(gmsh, body_surfaces, _volume_of(body, half), half,
-                        layer_heights(spec)[0] if spec.layers_3d else None, angle)
+            room = layer_heights(spec)[0] if spec.layers_3d else spec.body_size_3d
+            moved = keep_volume(gmsh, body_surfaces, _volume_of(body, half), half, room, angle)
+            if moved < 0.0:
+                note = (f"the body's facets are left as chords: moving them to its volume "
+                        f"would move a node {-moved * 1e3:.3g} mm")
         groups = _physical_groups(gmsh, volumes, body_surfaces, tank, half, layers)
         gmshio.write_msh22(path)
         result = summary(gmsh, groups, path)
         result["body_triangles"] = gmshio.surface_triangles(body_surfaces)
+    if note:
+        result["surface_note"] = note
     return result
 
 

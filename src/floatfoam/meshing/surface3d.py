@@ -167,8 +167,8 @@ def relax_on_surface(vertices: np.ndarray, faces: np.ndarray, func, size: float,
 PLANE_EPS = 2e-5  # m: OpenCASCADE pads bounding boxes by up to ~1e-5 m (a 2 m tank's 2e-6
 
 
-def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
-                first: float | None, angle: float = FEATURE_ANGLE) -> float:
+def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None, room: float,
+                angle: float = FEATURE_ANGLE) -> float:
     """Move the nodes of the body's remeshed surfaces along their normals until the surface
     encloses ``volume`` (m³: the body's, half of it with ``half``, whose plane closes the half
     surface). Facets on a curved surface are its chords and cut it short: a sphere meshed at
@@ -176,9 +176,10 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
     Each node moves by c·w, w its bulge (its height above its neighbours' mean along its
     normal: ~h²κ/2, nil where the surface is flat, negative where it is hollow), a node on a
     turn sharper than ``angle`` (degrees) not at all (a crease, which the facets keep), c
-    the one factor that gives the volume. Nodes in the symmetry plane stay in it. ``first``:
-    the first prism layer's height, which the move must leave room for. Returns the largest
-    move (m)."""
+    the one factor that gives the volume. Nodes in the symmetry plane stay in it. ``room``:
+    the first prism layer's height, or the body's cell size: a node that would move beyond half
+    of it (the correction gathered on a few nodes, a layer folded) leaves every node where it
+    is. Returns the largest move (m), negative when the nodes were left."""
     tags, v, faces = gmshio.surface_mesh(surfaces)
     k = "xy".index(half) if half else None
     on_plane = np.abs(v[:, k]) < PLANE_EPS if half else np.zeros(len(v), dtype=bool)
@@ -229,11 +230,8 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None,
         v = moved + step[:, None] * normals
         move += step
     largest = float(np.max(np.abs(move)))
-    if first is not None and largest > 0.5 * first:  # the first prism layer would fold
-        raise InputError(f"mesh.gmsh.layers_height_3d: the first prism layer, {first * 1e3:.3g} "
-                         f"mm, is too thin for the body's nodes, which move {largest * 1e3:.3g} "
-                         "mm to the body's volume; valid: a first layer over twice that "
-                         "(fewer mesh.gmsh.layers_3d or a larger layers_height_3d)")
+    if largest > 0.5 * room:  # the correction gathered on a few nodes: the chords are kept
+        return -largest
     if half:
         v[on_plane, k] = 0.0
     for node, point in zip(tags, v, strict=True):
