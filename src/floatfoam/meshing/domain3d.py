@@ -99,14 +99,12 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
             failures.append(f"{err}")
             continue
         if failures:
-            result["surface_note"] = "; ".join(filter(None, [(
-
-                f"gmsh meshed the body's surface with turns sharper than {angle:g}° as edges"
-                + ("" if tried.layers_3d == spec.layers_3d else " and without prism layers")
-                + f" (as asked, it failed: {failures[0]})"), result.get("surface_note")]))
+            wider = (f"gmsh meshed the body's surface with turns sharper than {angle:g}° as edges"
+                     + ("" if tried.layers_3d == spec.layers_3d else " and without prism layers")
+                     + f" (as asked, it failed: {failures[0]})")
+            result["surface_note"] = "; ".join(filter(None, [wider, result.get("surface_note")]))
         return result
-    angles = ", ".join(f"{a:g}" for a, _ in attempts[:len(attempts) // (2 if spec.layers_3d
-                                                                          else 1)])
+    angles = ", ".join(f"{a:g}" for a in FEATURE_ANGLES)
     raise ComputationError(f"gmsh could not mesh the body's surface ({failures[0]}), with its "
                            f"edges at turns sharper than {angles}°"
                            + (", with and without prism layers" if spec.layers_3d else "")
