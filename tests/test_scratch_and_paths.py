@@ -142,6 +142,15 @@ def test_mesh_out_never_overwrites(tmp_path, capsys):
     assert existing.read_text() == "mine\n"
 
 
+def test_mesh_out_names_a_msh_file(tmp_path, capsys):
+    """gmsh writes the format the name ends in: a name without .msh is refused before any
+    meshing."""
+    assert main(["mesh", "domain", "cylinder_heave", "--out", str(tmp_path / "domain")]) == 2
+    assert one_error_line(capsys) == (f"floatfoam mesh: error: --out {tmp_path / 'domain'}: "
+                                      "valid is a file name ending in .msh")
+    assert not any(tmp_path.iterdir())
+
+
 @pytest.mark.parametrize("build, words", [("x" * 300, "bytes per folder name"),
                                           ("/".join(["y" * 200] * 5), "characters long")])
 def test_build_paths_openfoam_cannot_take(tmp_path, monkeypatch, capsys, build, words):

@@ -157,3 +157,62 @@ def write_stl(path: Path, vertices: np.ndarray, faces: np.ndarray, name: str = "
         fh.write(header + struct.pack("<I", len(faces)))
         fh.write(data.tobytes())
     return path
+
+
+#: OpenFOAM's prism (cellModels): its faces, outwards, by its points' places — gmsh's order
+_PRISM_FACES = ((0, 2, 1), (3, 4, 5), (0, 3, 5, 2), (1, 2, 5, 4), (0, 1, 4, 3))
+
+
+def inside_out_prisms(volumes: list[int]) -> int:
+    """How many prisms of the ``volumes`` gmshToFoam takes for inside out: a face at least
+    whose area normal points towards the cell's centre (OpenFOAM's: of the pyramids its faces
+    make with its points' mean) from the face's first point — gmshToFoam's test. gmshToFoam
+    "corrects" such a prism by swapping two points of one triangle only, which crosses two of
+    its quadrangles: the cells beside them then find no face to share, and gmshToFoam leaves
+    those faces in a patch of their own. A prism layer folded over at a thin edge (a hull's
+    knife-edge keel) makes them."""
+    import gmsh
+
+    tags, flat_coords, _ = gmsh.model.mesh.getNodes()
+    order = np.argsort(tags)
+    tags, coords = tags[order], flat_coords.reshape(-1, 3)[order]
+    count = 0
+    for tag in volumes:
+        types, _, nodes = gmsh.model.mesh.getElements(3, tag)
+        for etype, flat in zip(types, nodes, strict=True):
+            if etype != 6:  # prisms
+                continue
+            points = coords[np.searchsorted(tags, np.asarray(flat).reshape(-1, 6))]
+            guess = points.mean(axis=1)
+            faces = [_face_centre_normal(points[:, face]) for face in _PRISM_FACES]
+            volume, moment = 0.0, 0.0
+            for centre, normal in faces:  # the pyramids from the points' mean
+                pyramid = np.sum(normal * (centre - guess), axis=1) / 3.0
+                volume = volume + pyramid
+                moment = moment + pyramid[:, None] * (0.75 * centre + 0.25 * guess)
+            cell = moment / (volume[:, None] + 1e-300)
+            wrong = np.zeros(len(points), dtype=bool)
+            for face, (_, normal) in zip(_PRISM_FACES, faces, strict=True):
+                wrong |= np.sum(normal * (points[:, face[0]] - cell), axis=1) < 0.0
+            count += int(np.sum(wrong))
+    return count
+
+
+def _face_centre_normal(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """OpenFOAM's face centre and area normal of faces ``p`` (n, 3 or 4 points, 3): a
+    triangle's points' mean and half its cross product; else the area-weighted centres of the
+    triangles each edge makes with the points' mean, and the sum of their area normals."""
+    if p.shape[1] == 3:
+        return p.mean(axis=1), 0.5 * np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    mean = p.mean(axis=1)
+    normal, weighted, total = 0.0, 0.0, 0.0
+    for j in range(p.shape[1]):
+        a, b = p[:, j], p[:, (j + 1) % p.shape[1]]
+        cross = np.cross(a - mean, b - mean)
+        area = np.linalg.norm(cross, axis=1)
+        normal = normal + 0.5 * cross
+        weighted = weighted + area[:, None] * (a + b + mean) / 3.0
+        total = total + area
+    centre = np.where(total[:, None] > 1e-300, weighted / np.maximum(total, 1e-300)[:, None],
+                      mean)
+    return centre, normal

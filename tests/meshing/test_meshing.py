@@ -529,3 +529,41 @@ def test_a_body_whose_layers_gmsh_cannot_make_at_its_edges_is_meshed_with_wider_
     assert abs(result["body_patch"]["immersed_error"]) < 1e-3  # measured +3.3e-4
     quality = convert_and_check(tmp_path / "s.msh", tmp_path / "foam")
     assert quality["mesh_ok"] and quality["cells"] == result["cells"]
+
+
+
+@pytest.mark.parametrize("folded", [False, True])
+def test_prisms_gmshtofoam_turns_over_are_counted_as_it_counts_them(tmp_path, folded):
+    """A layer of prisms 0.1 thick on a unit square (gmsh's extrusion), one top node pushed
+    0.3 under the bottom (a layer folded over, as at a hull's knife-edge keel): gmshToFoam
+    takes the prisms about it (6) for inside out and "corrects" them into crossed cells;
+    ``inside_out_prisms`` counts the same prisms (none without the fold), so that
+    ``domain_3d`` meshes otherwise rather than hand gmshToFoam such a mesh."""
+    from floatfoam import gmshio
+    from floatfoam.foam.meshcheck import write_system
+    from floatfoam.foam.runner import run_app
+
+    with gmshio.session("folded") as gmsh:
+        occ = gmsh.model.occ
+        square = occ.addRectangle(0, 0, 0, 1, 1)
+        layer = occ.extrude([(2, square)], 0, 0, 0.1, numElements=[1], recombine=True)
+        occ.synchronize()
+        gmsh.option.setNumber("Mesh.MeshSizeMax", 0.25)
+        gmsh.model.mesh.generate(3)
+        volume = [tag for dim, tag in layer if dim == 3][0]
+        if folded:  # the top node nearest the middle, through the bottom
+            tags, coords, _ = gmsh.model.mesh.getNodes(2, -1, includeBoundary=True)
+            coords = coords.reshape(-1, 3)
+            top = np.nonzero(np.isclose(coords[:, 2], 0.1))[0]
+            node = top[np.argmin(np.linalg.norm(coords[top, :2] - 0.5, axis=1))]
+            gmsh.model.mesh.setNode(int(tags[node]), [*coords[node, :2], -0.3], [])
+        counted = gmshio.inside_out_prisms([volume])
+        surfaces = [tag for _, tag in gmsh.model.getEntities(2)]
+        gmsh.model.addPhysicalGroup(2, surfaces, name="walls")
+        gmsh.model.addPhysicalGroup(3, [volume], name="fluid")
+        gmshio.write_msh22(tmp_path / "layer.msh")
+    write_system(tmp_path)
+    log = run_app(tmp_path, "gmshToFoam", ["gmshToFoam", "layer.msh"], quiet=True,
+                  marker=False).read_text()
+    assert counted == log.count("Inverting prism")
+    assert (counted > 0) == folded

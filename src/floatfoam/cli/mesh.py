@@ -129,6 +129,8 @@ def _domain_file(args, level: str) -> Path | None:
     out = args.out
     if out is None:
         return None
+    if out.suffix != ".msh":  # gmsh writes the format its name ends in
+        raise InputError(f"--out {args.out}: valid is a file name ending in .msh")
     if args.level == "all":
         out = out.with_name(f"{out.stem}_{level}{out.suffix}")
     if out.exists():

@@ -159,6 +159,10 @@ def _domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path, half: 
                 note = (f"the body's facets are left as chords: moving them to its volume "
                         f"would move a node {-moved * 1e3:.3g} mm")
         groups = _physical_groups(gmsh, volumes, body_surfaces, tank, half, layers)
+        inside_out = gmshio.inside_out_prisms(groups["fluid"][1])
+        if inside_out:  # gmshToFoam's turning them over leaves faces in no patch
+            raise RuntimeError(f"meshing: {inside_out} prisms of the layers come out inside "
+                               "out (folded over at a thin edge)")
         gmshio.write_msh22(path)
         result = summary(gmsh, groups, path)
         result["body_triangles"] = gmshio.surface_triangles(body_surfaces)
