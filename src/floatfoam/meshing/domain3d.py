@@ -45,8 +45,6 @@ import numpy as np
 
 from floatfoam import gmshio
 from floatfoam.bodies.expression import compile_expression
-from floatfoam.bodies.geometry import mesh_volume
-from floatfoam.bodies.shapes import Ellipsoid
 from floatfoam.errors import ComputationError, InputError
 from floatfoam.interrupts import RECEIVED
 from floatfoam.meshing import sections
@@ -151,13 +149,12 @@ def _domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path, half: 
         gmsh.model.mesh.generate(3)
         if surface is not None:  # remeshed on OpenCASCADE's triangles: back onto the solid
             onto_ellipsoid(gmsh, body, body_surfaces, where, layer_heights(spec)[0])
-        note = None
-        if body.given_by_triangles or surface is not None:  # the facets out to the volume
-            room = layer_heights(spec)[0] if spec.layers_3d else spec.body_size_3d
-            moved = keep_volume(gmsh, body_surfaces, _volume_of(body, half), half, room, angle)
-            if moved < 0.0:
-                note = (f"the body's facets are left as chords: moving them to its volume "
-                        f"would move a node {-moved * 1e3:.3g} mm")
+        note = None  # the facets, chords of the surface, out to the body's volume
+        room = layer_heights(spec)[0] if spec.layers_3d else spec.body_size_3d
+        moved = keep_volume(gmsh, body_surfaces, _volume_of(body, half), half, room, angle)
+        if moved < 0.0:
+            note = (f"the body's facets are left as chords: moving them to its volume "
+                    f"would move a node {-moved * 1e3:.3g} mm")
         groups = _physical_groups(gmsh, volumes, body_surfaces, tank, half, layers)
         inside_out = gmshio.inside_out_prisms(groups["fluid"][1])
         if inside_out:  # gmshToFoam's turning them over leaves faces in no patch
@@ -172,13 +169,10 @@ def _domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path, half: 
 
 
 def _volume_of(body, half: str | None) -> float:
-    """The volume the body's remeshed surface must enclose: an ellipsoid's exact one, else
-    that of the body's triangles, which the theory takes (an implicit body's as marching cubes
-    give them); half of it with ``half``."""
-    if isinstance(body, Ellipsoid):
-        volume = 4.0 / 3.0 * math.pi * float(np.prod(body.axes))
-    else:
-        volume = abs(mesh_volume(body.vertices, body.faces))
+    """The volume the body's meshed surface must enclose: the body's own (an ellipsoid's or a
+    section's exact one; that of a body's triangles, which the theory takes, an implicit
+    body's as marching cubes give them); half of it with ``half``."""
+    volume = abs(body.volume())
     return volume / 2.0 if half else volume
 
 
