@@ -173,9 +173,7 @@ def inside_out_prisms(volumes: list[int]) -> int:
     knife-edge keel) makes them."""
     import gmsh
 
-    tags, flat_coords, _ = gmsh.model.mesh.getNodes()
-    order = np.argsort(tags)
-    tags, coords = tags[order], flat_coords.reshape(-1, 3)[order]
+    tags, coords = node_table()
     count = 0
     for tag in volumes:
         types, _, nodes = gmsh.model.mesh.getElements(3, tag)

@@ -87,8 +87,8 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
         attempts += [(angle, replace(spec, layers_3d=0)) for angle, _ in attempts]
     failures = []
     for angle, tried in attempts:
-        try:
-            result = _domain_3d(case, tried, tank, where, path, half, angle)
+        try:  # quiet: what gmsh says of a failure comes back in what it raises
+            result = _domain_3d(case, tried, tank, where, path, half, angle, verbosity=0)
         except Exception as err:  # noqa: BLE001 - gmsh raises Exception itself, saying why
             # what gmsh raises, and an empty patch; an interrupt wrapped by gmsh's ctypes
             # call stops, it is not retried
@@ -110,16 +110,16 @@ def domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path,
 
 
 def _domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path, half: str | None,
-               angle: float) -> dict:
+               angle: float, verbosity: int = VERBOSITY) -> dict:
     """:func:`domain_3d` with the body's surface edged at turns sharper than ``angle``
-    (degrees)."""
+    (degrees), gmsh's messages at ``verbosity``."""
     from floatfoam.meshing.planar import summary
 
     body = case.body
     surface = None
     if spec.layers_3d and not body.given_by_triangles:  # its own gmsh session first
         surface = solid_surface(body, spec, half)
-    with gmshio.session(f"{case.name}-3d", verbosity=VERBOSITY) as gmsh:
+    with gmshio.session(f"{case.name}-3d", verbosity=verbosity) as gmsh:
         if body.given_by_triangles:
             vertices, faces = body.vertices, body.faces
             if body.expression is not None:  # an implicit surface: nodes back onto F = 0
