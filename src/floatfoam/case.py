@@ -283,7 +283,12 @@ def _build(folder: Path, cfg: dict) -> Case:
     depth = math.inf if depth in (math.inf, "inf") else table_number(cfg, "fluid", "depth")
     mass = _mass(cfg, body, fluid["rho"])
     cog = table_vector(cfg, "mass", "cog")
-    if not body.contains(cog):
+    if getattr(body, "pieces", 1) > 1:  # G of two hulls lies between them
+        if np.any(cog < body.lo) or np.any(cog > body.hi):
+            raise InputError(f"mass.cog = {cog.tolist()} is outside the box about the body's "
+                             f"{body.pieces} pieces, {body.lo.round(6).tolist()} to "
+                             f"{body.hi.round(6).tolist()}; valid is a point within it")
+    elif not body.contains(cog):
         raise InputError(f"mass.cog = {cog.tolist()} is outside the body; valid is a point "
                          "inside it (relative to its geometric centre)")
     if "gyradius" not in cfg["mass"]:

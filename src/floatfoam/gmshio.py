@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from floatfoam.bodies.geometry import outward_pieces
 from floatfoam.interrupts import handlers_kept
 
 TRIANGLE, QUAD = 2, 3  # gmsh element types
@@ -63,18 +64,23 @@ def surface_mesh(surface_tags) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     elements = np.concatenate(consistent_orientation(patches))
     tags, coords = node_table()
     used, inverse = np.unique(elements, return_inverse=True)
-    return used, coords[np.searchsorted(tags, used)], inverse.reshape(-1, 3)
+    vertices = coords[np.searchsorted(tags, used)]
+    return used, vertices, outward_pieces(vertices, inverse.reshape(-1, 3))[0]
 
 
 def consistent_orientation(patches: list[np.ndarray]) -> list[np.ndarray]:
     """Flip whole patches (each consistently oriented in itself) so that every edge shared by
-    two patches is run in opposite directions by them (breadth-first over the patches)."""
+    two patches is run in opposite directions by them (breadth-first over the patches, from
+    the first of each separate piece)."""
     directed = [{e for tri in p.tolist() for e in ((tri[0], tri[1]), (tri[1], tri[2]),
                                                    (tri[2], tri[0]))} for p in patches]
     flipped = [None] * len(patches)
-    flipped[0] = False
-    queue = [0]
-    while queue:
+    queue = []
+    while queue or None in flipped:
+        if not queue:  # the first patch of a piece not reached yet
+            start = flipped.index(None)
+            flipped[start] = False
+            queue = [start]
         i = queue.pop()
         edges_i = directed[i] if not flipped[i] else {(b, a) for a, b in directed[i]}
         for j in range(len(patches)):
@@ -87,7 +93,7 @@ def consistent_orientation(patches: list[np.ndarray]) -> list[np.ndarray]:
             else:
                 continue
             queue.append(j)
-    return [p[:, ::-1] if f else p for p, f in zip(patches, flipped, strict=True)]  # None: alone
+    return [p[:, ::-1] if f else p for p, f in zip(patches, flipped, strict=True)]
 
 
 def curve_chain(curve_tags) -> np.ndarray:

@@ -20,7 +20,12 @@ from floatfoam.bodies.expression import (
     MAX_EXPRESSION_LENGTH,
     compile_expression,
 )
-from floatfoam.bodies.geometry import icosphere, overlapping_boxes, self_intersection
+from floatfoam.bodies.geometry import (
+    icosphere,
+    mesh_volume,
+    overlapping_boxes,
+    self_intersection,
+)
 from floatfoam.bodies.surfaces import implicit_body, stl_body
 from floatfoam.case import load_case
 from floatfoam.cli import main
@@ -281,6 +286,48 @@ def test_copies_apart_or_a_closed_mesh_do_not_cross():
     hit = self_intersection(*near)
     assert hit is not None and hit[0] < len(f) <= hit[1]
     assert hit[2][0] == pytest.approx(1.0, abs=1e-3)
+
+
+def test_two_hulls_are_each_turned_outwards(tmp_path, pontoon):
+    """Two pontoons side by side, the second mirrored about its own y = 0 plane as a CAD's
+    mirrored copy is, its triangles then wound inwards: each piece is turned outwards, and the
+    body displaces twice the pontoon (read as one surface turned as a whole, the two would
+    cancel)."""
+    single = stl_body(PONTOON).volume()
+    mirrored = pontoon * [1.0, -1.0, 1.0] + [0.0, 1.0, 0.0]  # corners kept: wound inwards
+    path = write_binary(tmp_path / "two.stl", np.concatenate([pontoon, mirrored]))
+    body = stl_body(path)
+    assert mesh_volume(body.vertices, body.faces) == pytest.approx(2.0 * single, rel=1e-6)
+
+
+def test_two_hulls_carry_g_between_them(tmp_path, pontoon, capsys):
+    """A body of two pieces (two half-size pontoons 0.6 m apart, the second a mirrored copy):
+    G between them is valid (inside the box about both), theory gives the pair's waterplane;
+    G beyond the box is refused in one line naming it."""
+    half = pontoon * 0.5
+    hulls = np.concatenate([half + [0.0, -0.3, 0.0], half * [1.0, -1.0, 1.0] + [0.0, 0.3, 0.0]])
+    folder = tmp_path / "cat"
+    folder.mkdir()
+    write_binary(folder / "cat.stl", hulls)
+    text = ('[body]\nshape = "stl"\npath = "cat.stl"\n[mass]\ndensity = 400.0\n'
+            'cog = [0.0, 0.0, -0.015]\ngyradius = [0.2, 0.2, 0.25]\n')
+    (folder / "case.toml").write_text(text)
+    case = load_case(str(folder))
+    assert case.body.pieces == 2
+    assert case.body.volume() == pytest.approx(2 * stl_body(PONTOON).volume() / 8, rel=1e-6)
+    (folder / "case.toml").write_text(text.replace("[0.0, 0.0, -0.015]", "[0.0, 0.5, 0.0]"))
+    one_error_line(capsys, ["theory", str(folder)], "mass.cog = [0.0, 0.5, 0.0] is outside "
+                   "the box about the body's 2 pieces")
+
+
+def test_a_piece_inside_another_is_refused(tmp_path, capsys):
+    """A closed surface inside the body's (a cavity, a sphere within a sphere) displaces no
+    water of its own: refused in one line naming the file and the piece."""
+    v, f = icosphere(3)
+    inner = (v * 0.5)[f][:, ::-1]  # a cavity's surface, wound as a cavity's is
+    path = write_binary(tmp_path / "hollow.stl", np.concatenate([v[f], inner]))
+    refused(lambda: stl_body(path), str(path), "closed surface inside another",
+            "piece 2 of 2")
 
 
 def test_overlapping_boxes_are_every_overlapping_pair_once():

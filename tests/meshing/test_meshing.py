@@ -569,3 +569,29 @@ def test_prisms_gmshtofoam_turns_over_are_counted_as_it_counts_them(tmp_path, fo
                   marker=False).read_text()
     assert counted == log.count("Inverting prism")
     assert (counted > 0) == folded
+
+
+def test_each_piece_of_a_body_is_turned_outwards():
+    """A body of two separate pieces (two hulls): gmsh orients each surface by its own
+    triangles or parametrisation, and the one piece's orientation says nothing of the other's.
+    ``gmshio.surface_mesh`` turns each piece outwards — ``keep_volume`` moves nodes along its
+    normals, and the volume checks sum the pieces: here the second sphere given inwards."""
+    from floatfoam import gmshio
+    from floatfoam.bodies.shapes import Ellipsoid
+    from floatfoam.meshing.surface3d import enclosed_volume
+
+    vertices, faces = Ellipsoid([0.1, 0.1, 0.1]).surface_mesh()
+    with gmshio.session("two pieces") as gmsh:
+        surfaces = []
+        for piece, (shift, order) in enumerate([(0.0, [0, 1, 2]), (0.5, [0, 2, 1])]):
+            tag = gmsh.model.addDiscreteEntity(2)
+            nodes = np.arange(1, len(vertices) + 1) + piece * len(vertices)
+            gmsh.model.mesh.addNodes(2, tag, nodes, (vertices + [shift, 0.0, 0.0]).ravel())
+            gmsh.model.mesh.addElementsByType(tag, gmshio.TRIANGLE, [],
+                                              nodes[faces[:, order]].ravel())
+            surfaces.append(tag)
+        _, points, triangles = gmshio.surface_mesh(surfaces)
+    first = points[triangles][:, :, 0].mean(axis=1) < 0.25
+    exact = enclosed_volume(vertices, faces)  # the icosphere's own, outwards
+    for piece in (first, ~first):
+        assert enclosed_volume(points, triangles[piece]) == pytest.approx(exact, rel=1e-12)

@@ -86,6 +86,27 @@ def mesh_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
 
+def outward_pieces(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``faces`` (each separate piece consistently oriented in itself) with every piece turned
+    outwards, the volume it encloses by ∮ z n_z dA positive (a half surface open along a
+    vertical plane too), and each face's piece (0, 1, ...). One piece's orientation says
+    nothing of another's: two hulls, one mirrored from the other."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    n = len(faces)
+    rows = np.repeat(np.arange(n), 3)  # faces joined through their vertices
+    graph = coo_matrix((np.ones(3 * n), (rows, faces.ravel() + n)),
+                       shape=(n + len(vertices),) * 2)
+    _, label = connected_components(graph, directed=False)
+    _, piece = np.unique(label[:n], return_inverse=True)
+    c = vertices[faces]
+    cross = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
+    volume = np.bincount(piece, weights=cross[:, 2] * c[:, :, 2].mean(axis=1))
+    inward = volume[piece] < 0.0
+    return np.where(inward[:, None], faces[:, ::-1], faces), piece
+
+
 def open_edges(faces: np.ndarray) -> int:
     """Number of directed edges without their opposite: 0 for a closed, consistently
     oriented (watertight) triangle mesh."""

@@ -236,6 +236,13 @@ class MeshBody(Body):
         return self.vertices, self.faces
 
     @cached_property
+    def pieces(self) -> int:
+        """How many separate closed pieces the surface has (two hulls: 2)."""
+        from floatfoam.bodies.geometry import outward_pieces
+
+        return int(outward_pieces(self.vertices, self.faces)[1].max()) + 1
+
+    @cached_property
     def mirror_planes(self) -> tuple[str, ...]:
         """The planes x = 0 and y = 0 ("x", "y") the body is mirror symmetric about
         (:func:`floatfoam.bodies.mirror.mirror_planes`)."""

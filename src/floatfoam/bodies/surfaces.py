@@ -9,7 +9,13 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam.bodies.expression import compile_expression
-from floatfoam.bodies.geometry import mesh_volume, open_edges, self_intersection
+from floatfoam.bodies.geometry import (
+    mesh_volume,
+    open_edges,
+    outward_pieces,
+    self_intersection,
+    winding_number,
+)
 from floatfoam.bodies.shapes import MeshBody
 from floatfoam.errors import InputError
 
@@ -53,7 +59,9 @@ def stl_body(path: Path, scale: float = 1.0) -> MeshBody:
 
     The file must hold finite coordinates and a watertight, consistently oriented surface
     that does not cross itself (no two triangles coincide or meet unless they share a vertex
-    or an edge); anything else is an InputError naming the file.
+    or an edge); anything else is an InputError naming the file. A surface of separate pieces
+    (two hulls) has each turned outwards, as a CAD's mirrored copy may come inwards; a piece
+    inside another is refused.
     """
     name = f"body.path = {str(path)!r}"
     if not path.is_file():
@@ -70,9 +78,23 @@ def stl_body(path: Path, scale: float = 1.0) -> MeshBody:
         raise InputError(f"{name} is not a closed surface: valid is a watertight, "
                          "consistently oriented STL")
     _check_self_intersection(verts, faces, name)
-    if mesh_volume(verts, faces) < 0:
-        faces = faces[:, ::-1]
+    faces, piece = outward_pieces(verts, faces)  # each hull outwards, whichever way it came
+    _check_nested(verts, faces, piece, name)
     return MeshBody(verts, faces)
+
+
+def _check_nested(verts: np.ndarray, faces: np.ndarray, piece: np.ndarray, name: str) -> None:
+    """A closed piece inside another (a cavity, or a body within a body) displaces no water of
+    its own: refused, naming it."""
+    count = int(piece.max()) + 1
+    for inner in range(count):
+        point = verts[faces[piece == inner][0, 0]]
+        for outer in range(count):
+            if outer != inner and winding_number(verts, faces[piece == outer], point) > 0.5:
+                raise InputError(f"{name} holds a closed surface inside another (piece "
+                                 f"{inner + 1} of {count}, by its first triangle's corner "
+                                 f"{np.round(point, 6).tolist()}): valid is a body's outer "
+                                 "surface alone, each separate piece outside the others")
 
 
 def _read_stl(data: bytes, name: str) -> np.ndarray:
