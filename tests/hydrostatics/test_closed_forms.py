@@ -7,7 +7,13 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from floatfoam.bodies.shapes import Box, ConicCylinder, Ellipsoid, EllipticCylinder
+from floatfoam.bodies.shapes import (
+    Box,
+    ConicCylinder,
+    Ellipsoid,
+    EllipticCylinder,
+    VerticalCylinder,
+)
 from floatfoam.hydrostatics.immersion import immersed
 
 A = 0.0762
@@ -118,6 +124,19 @@ def test_box_with_bilge_matches_hand_formula(draft):
         assert area == pytest.approx(beam * draft - (4 - math.pi) * r * r / 2, rel=1e-10)
     assert imm.volume == pytest.approx(area, rel=1e-9)
     assert imm.waterplane_area == pytest.approx(2 * w(draft), rel=1e-12)
+
+
+@pytest.mark.parametrize("draft", [0.03, 0.1, 0.2])
+def test_vertical_cylinder_upright_is_a_disc_over_a_prism(draft):
+    """Radius 0.1 m, height 0.2 m: V = πr²d, B at d/2 above the keel, the waterplane a disc
+    (I = πr⁴/4 about each axis, none when the top is under)."""
+    r, h = 0.1, 0.2
+    imm = immersed(VerticalCylinder(r, h), h / 2 - draft, method="closed")
+    assert imm.volume == pytest.approx(math.pi * r * r * draft, rel=1e-12)
+    assert imm.centroid[2] == pytest.approx(-draft / 2, abs=1e-15)  # keel at z = −draft
+    disc = 0.0 if draft >= h else math.pi * r * r
+    assert imm.waterplane_area == pytest.approx(disc, rel=1e-12, abs=1e-15)
+    assert imm.waterplane_inertia[0] == pytest.approx(disc * r * r / 4, rel=1e-12, abs=1e-15)
 
 
 def test_fully_submerged_and_emerged():

@@ -8,7 +8,14 @@ import numpy as np
 import pytest
 
 from floatfoam.bodies.geometry import icosphere
-from floatfoam.bodies.shapes import Box, ConicCylinder, Ellipsoid, EllipticCylinder, MeshBody
+from floatfoam.bodies.shapes import (
+    Box,
+    ConicCylinder,
+    Ellipsoid,
+    EllipticCylinder,
+    MeshBody,
+    VerticalCylinder,
+)
 from floatfoam.bodies.surfaces import implicit_body, stl_body
 from floatfoam.hydrostatics import closed_forms
 from floatfoam.hydrostatics.immersion import immersed, mesh_immersed
@@ -23,6 +30,7 @@ BODIES = {
     "box": Box(0.3, 0.2, 1.0, 0.03),
     "sphere": Ellipsoid([0.1, 0.1, 0.1]),
     "ellipsoid": Ellipsoid([0.3, 0.2, 0.1]),
+    "vertical cylinder": VerticalCylinder(0.1, 0.2),
 }
 ATTITUDES = [(0.0, 0.0, 0.0), (0.02, 0.0, 0.0), (-0.03, 0.0, 0.0), (0.01, 0.3, 0.0),
              (-0.02, 0.6, 0.0), (0.01, 0.2, 0.15)]

@@ -18,6 +18,7 @@ SHAPES = {
     "box": ("beam", "height", "length"),
     "sphere": ("radius",),
     "ellipsoid": ("semi_axes",),
+    "vertical_cylinder": ("radius", "height"),
     "implicit": ("expression", "bounds"),
     "stl": ("path",),
 }
@@ -68,6 +69,8 @@ def make_body(cfg: dict, folder: Path) -> shapes.Body:
         return shapes.Ellipsoid([r, r, r])
     if shape == "ellipsoid":
         return shapes.Ellipsoid(table_vector(cfg, "body", "semi_axes", positive=True))
+    if shape == "vertical_cylinder":
+        return shapes.VerticalCylinder(num("radius"), num("height"))
     from floatfoam.bodies import surfaces
 
     if shape == "implicit":

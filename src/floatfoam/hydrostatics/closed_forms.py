@@ -6,6 +6,7 @@
   by det D, centroids map through D, and the waterplane is the image of the cap's base circle.
 * Horizontal cylinders on the conic base y² = n·x + m·x² (x up from the vertex, Le Barbier
   1817) and boxes with a bilge radius, **upright**, from the integrals of the half-width.
+* The vertical circular cylinder, **upright**: a disc's waterplane over a prism.
 """
 
 from __future__ import annotations
@@ -54,6 +55,26 @@ def _box(body, z_c: float, heel: float, trim: float) -> Immersed | None:
     depth = min(max(body.height / 2 - z_c, 0.0), body.height)
     i0, i1, w = box_integrals(body.beam, body.r, depth)
     return _upright(body, i0, i1, w, full=depth >= body.height, z_c=z_c)
+
+
+@for_body.register(shapes.VerticalCylinder)
+def _vertical_cylinder(body, z_c: float, heel: float, trim: float) -> Immersed | None:
+    if heel != 0.0 or trim != 0.0:
+        return None
+    depth = min(max(body.h / 2 - z_c, 0.0), body.h)
+    if depth <= 0.0:
+        return nothing_immersed(exact=True)
+    area = math.pi * body.r**2
+    inertia = math.pi * body.r**4 / 4.0
+    waterplane = depth < body.h  # none when fully submerged
+    return Immersed(
+        volume=area * depth,
+        centroid=np.array([0.0, 0.0, z_c - body.h / 2 + depth / 2]),
+        waterplane_area=area if waterplane else 0.0,
+        waterplane_centroid=np.zeros(2),
+        waterplane_inertia=np.array([inertia, inertia, 0.0]) if waterplane else np.zeros(3),
+        exact=True,
+    )
 
 
 def _upright(body, i0: float, i1: float, w: float, *, full: bool, z_c: float) -> Immersed:

@@ -47,13 +47,18 @@ def _ellipse(body: bodies.EllipticCylinder, occ, x0: float) -> list[int]:
 
 
 def add_meridian(body) -> list[int]:
-    """Curves of the meridian of an ellipsoid of revolution about z (semi-axes a, a, c) in the
-    (x = r, z) half-plane y = 0, between the keel (0, −c) and the top (0, c)."""
+    """Curves of the meridian of an ellipsoid of revolution about z (semi-axes a, a, c), or of
+    a vertical cylinder, in the (x = r, z) half-plane y = 0, from the keel (r = 0) to the top."""
     import gmsh
 
     if not body.is_axisymmetric:
         raise TypeError(f"{type(body).__name__} is not a body of revolution about z")
     occ = gmsh.model.occ
+    if isinstance(body, bodies.VerticalCylinder):  # keel, bottom rim, top rim, top
+        corners = [occ.addPoint(r, 0.0, z) for r, z in
+                   ((0.0, -body.h / 2), (body.r, -body.h / 2), (body.r, body.h / 2),
+                    (0.0, body.h / 2))]
+        return [occ.addLine(corners[i], corners[i + 1]) for i in range(3)]
     a, c = float(body.axes[0]), float(body.axes[2])
     if a == c:
         # circle in the x-z plane, local x-axis along x and local y-axis along z
@@ -94,6 +99,11 @@ def _ellipsoid(body: bodies.Ellipsoid, occ) -> int:
     tag = occ.addSphere(0.0, 0.0, 0.0, 1.0)
     occ.dilate([(3, tag)], 0.0, 0.0, 0.0, *axes)
     return tag
+
+
+@_solid.register(bodies.VerticalCylinder)
+def _vertical_cylinder(body: bodies.VerticalCylinder, occ) -> int:
+    return occ.addCylinder(0.0, 0.0, -body.h / 2, 0.0, 0.0, body.h, body.r)
 
 
 @_section.register(bodies.Box)
