@@ -48,11 +48,12 @@ KEY_DOCS = {
              "extends": "the name of a case whose tables this one takes, changing what it sets"},
     "body": {
         "shape": "one of " + ", ".join(SHAPES),
-        "radius": "m: circular_cylinder, sphere", "length": "m along x: the 2D sections "
-        "(volumes, areas and masses are for this length)",
+        "radius": "m: circular_cylinder, sphere, vertical_cylinder",
+        "length": "m along x: the 2D sections (volumes, areas and masses are for this length)",
         "half_beam": "m: elliptic_cylinder, parabolic_cylinder (half the width at the deck)",
         "half_height": "m: elliptic_cylinder", "height": "m, keel to deck: "
-        "parabolic_cylinder, conic_cylinder, box", "n": "m: conic_cylinder, y² = n·x + m·x²",
+        "parabolic_cylinder, conic_cylinder, box, vertical_cylinder",
+        "n": "m: conic_cylinder, y² = n·x + m·x²",
         "m": "conic_cylinder's m (dimensionless): < 0 ellipse, 0 parabola, > 0 hyperbola",
         "beam": "m: box", "bilge_radius": "m: box (optional, default 0: sharp bilges)",
         "semi_axes": "[a, b, c] in m: ellipsoid",

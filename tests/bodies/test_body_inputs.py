@@ -302,8 +302,8 @@ def test_two_hulls_are_each_turned_outwards(tmp_path, pontoon):
 
 def test_two_hulls_carry_g_between_them(tmp_path, pontoon, capsys):
     """A body of two pieces (two half-size pontoons 0.6 m apart, the second a mirrored copy):
-    G between them is valid (inside the box about both), theory gives the pair's waterplane;
-    G beyond the box is refused in one line naming it."""
+    G between them is valid (inside the box about both), the body displaces both hulls; G
+    beyond the box is refused in one line naming it."""
     half = pontoon * 0.5
     hulls = np.concatenate([half + [0.0, -0.3, 0.0], half * [1.0, -1.0, 1.0] + [0.0, 0.3, 0.0]])
     folder = tmp_path / "cat"
@@ -318,6 +318,15 @@ def test_two_hulls_carry_g_between_them(tmp_path, pontoon, capsys):
     (folder / "case.toml").write_text(text.replace("[0.0, 0.0, -0.015]", "[0.0, 0.5, 0.0]"))
     one_error_line(capsys, ["theory", str(folder)], "mass.cog = [0.0, 0.5, 0.0] is outside "
                    "the box about the body's 2 pieces")
+
+
+def test_an_implicit_shell_with_a_cavity_is_refused():
+    """An implicit body negative in a spherical shell 0.09–0.11 m: marching cubes give its
+    outer surface and its cavity's, and the cavity displaces no water: refused as an STL's."""
+    expression = "abs(sqrt(x**2 + y**2 + z**2) - 0.1) - 0.01"
+    refused(lambda: implicit_body(expression, [[-0.12] * 3, [0.12] * 3], 64),
+            f"body.expression = {expression!r}", "closed surface inside another",
+            "piece 2 of 2")
 
 
 def test_a_piece_inside_another_is_refused(tmp_path, capsys):

@@ -533,7 +533,7 @@ def test_a_body_whose_layers_gmsh_cannot_make_at_its_edges_is_meshed_with_wider_
     assert quality["mesh_ok"] and quality["cells"] == result["cells"]
 
 
-
+@pytest.mark.skipif(shutil.which("gmshToFoam") is None, reason="OpenFOAM not installed")
 @pytest.mark.parametrize("folded", [False, True])
 def test_prisms_gmshtofoam_turns_over_are_counted_as_it_counts_them(tmp_path, folded):
     """A layer of prisms 0.1 thick on a unit square (gmsh's extrusion), one top node pushed
@@ -577,8 +577,8 @@ def test_each_piece_of_a_body_is_turned_outwards():
     ``gmshio.surface_mesh`` turns each piece outwards — ``keep_volume`` moves nodes along its
     normals, and the volume checks sum the pieces: here the second sphere given inwards."""
     from floatfoam import gmshio
+    from floatfoam.bodies.geometry import enclosed_volume
     from floatfoam.bodies.shapes import Ellipsoid
-    from floatfoam.meshing.surface3d import enclosed_volume
 
     vertices, faces = Ellipsoid([0.1, 0.1, 0.1]).surface_mesh()
     with gmshio.session("two pieces") as gmsh:

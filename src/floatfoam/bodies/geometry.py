@@ -86,24 +86,38 @@ def mesh_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
 
+def enclosed_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
+    """The volume a closed surface of outward triangles encloses, by ∮ z n_z dA: a half surface
+    open along a vertical plane x = 0 or y = 0 too (n_z vanishes on that plane)."""
+    return float(np.sum(_z_flux(vertices, faces)) / 2.0)
+
+
+def _z_flux(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Each triangle's 2·∫ z n_z dA."""
+    c = vertices[faces]
+    cross = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])  # 2·area·n
+    return cross[:, 2] * c[:, :, 2].mean(axis=1)
+
+
 def outward_pieces(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``faces`` (each separate piece consistently oriented in itself) with every piece turned
-    outwards, the volume it encloses by ∮ z n_z dA positive (a half surface open along a
-    vertical plane too), and each face's piece (0, 1, ...). One piece's orientation says
-    nothing of another's: two hulls, one mirrored from the other."""
+    outwards, the volume it encloses (:func:`enclosed_volume`) positive, and each face's
+    piece (0, 1, ...): faces sharing an edge are of one piece (two shells touching at a
+    vertex are two). One piece's orientation says nothing of another's: two hulls, one
+    mirrored from the other."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
 
     n = len(faces)
-    rows = np.repeat(np.arange(n), 3)  # faces joined through their vertices
-    graph = coo_matrix((np.ones(3 * n), (rows, faces.ravel() + n)),
-                       shape=(n + len(vertices),) * 2)
+    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]),
+                    axis=1)
+    _, edge = np.unique(edges, axis=0, return_inverse=True)
+    edge = edge.ravel()
+    graph = coo_matrix((np.ones(3 * n), (np.tile(np.arange(n), 3), edge + n)),
+                       shape=(n + int(edge.max()) + 1,) * 2)
     _, label = connected_components(graph, directed=False)
     _, piece = np.unique(label[:n], return_inverse=True)
-    c = vertices[faces]
-    cross = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
-    volume = np.bincount(piece, weights=cross[:, 2] * c[:, :, 2].mean(axis=1))
-    inward = volume[piece] < 0.0
+    inward = np.bincount(piece, weights=_z_flux(vertices, faces))[piece] < 0.0
     return np.where(inward[:, None], faces[:, ::-1], faces), piece
 
 

@@ -240,18 +240,9 @@ class VerticalCylinder(Body):
     def surface_mesh(self, resolution=None):
         n = self.SEGMENTS if resolution is None else int(resolution)
         angle = 2.0 * math.pi * np.arange(n) / n
-        ring = np.column_stack([self.r * np.cos(angle), self.r * np.sin(angle)])
-        bottom = np.column_stack([ring, np.full(n, -self.h / 2)])
-        top = np.column_stack([ring, np.full(n, self.h / 2)])
-        vertices = np.vstack([bottom, top, [[0.0, 0.0, -self.h / 2], [0.0, 0.0, self.h / 2]]])
-        k, nxt = np.arange(n), (np.arange(n) + 1) % n
-        low, high = 2 * n, 2 * n + 1
-        faces = np.vstack([
-            np.column_stack([k, nxt, nxt + n]), np.column_stack([k, nxt + n, k + n]),  # side
-            np.column_stack([np.full(n, low), nxt, k]),  # bottom, outwards (down)
-            np.column_stack([np.full(n, high), k + n, nxt + n]),  # top, outwards (up)
-        ])
-        return vertices, faces
+        circle = self.r * np.column_stack([np.cos(angle), np.sin(angle)])  # CCW from +z
+        v, f = extrude_polygon(circle, self.h)  # along x: (axis, x, y) → (x, y, z), a
+        return v[:, [1, 2, 0]].copy(), f  # cyclic swap, the faces still outwards
 
     def volume(self) -> float:
         return math.pi * self.r**2 * self.h

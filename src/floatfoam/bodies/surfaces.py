@@ -10,7 +10,6 @@ import numpy as np
 
 from floatfoam.bodies.expression import compile_expression
 from floatfoam.bodies.geometry import (
-    mesh_volume,
     open_edges,
     outward_pieces,
     self_intersection,
@@ -24,7 +23,8 @@ def implicit_body(expression: str, bounds, resolution: int = 96) -> MeshBody:
     """Mesh the surface F = 0 (inside F < 0) by marching cubes on a regular grid spanning
     ``bounds`` = [[x0, y0, z0], [x1, y1, z1]] with ``resolution`` points per axis.
 
-    The surface must be closed inside the bounds: F > 0 on every face of the box.
+    The surface must be closed inside the bounds: F > 0 on every face of the box. Separate
+    pieces are each turned outwards; a cavity (a piece inside another) is refused.
     """
     from skimage.measure import marching_cubes
 
@@ -48,9 +48,7 @@ def implicit_body(expression: str, bounds, resolution: int = 96) -> MeshBody:
     spacing = tuple((hi - lo) / (resolution - 1))
     verts, faces, _, _ = marching_cubes(values, level=0.0, spacing=spacing)
     verts = verts + lo
-    faces = faces.astype(np.int64)
-    if mesh_volume(verts, faces) < 0:
-        faces = faces[:, ::-1]
+    faces = _outward(verts, faces.astype(np.int64), f"body.expression = {expression!r}")
     return MeshBody(verts, faces, expression)
 
 
@@ -78,24 +76,29 @@ def stl_body(path: Path, scale: float = 1.0) -> MeshBody:
         raise InputError(f"{name} is not a closed surface: valid is a watertight, "
                          "consistently oriented STL")
     _check_self_intersection(verts, faces, name)
-    faces, piece = outward_pieces(verts, faces)  # each hull outwards, whichever way it came
-    _check_nested(verts, faces, piece, name)
-    return MeshBody(verts, faces)
+    return MeshBody(verts, _outward(verts, faces, name))  # each hull, whichever way it came
 
 
-def _check_nested(verts: np.ndarray, faces: np.ndarray, piece: np.ndarray, name: str) -> None:
-    """A closed piece inside another (a cavity, or a body within a body) displaces no water of
-    its own: refused, naming it."""
+def _outward(verts: np.ndarray, faces: np.ndarray, name: str) -> np.ndarray:
+    """``faces`` with each separate piece turned outwards (:func:`outward_pieces`); a piece
+    inside another (a cavity, or a body within a body), which displaces no water of its own,
+    refused, naming it."""
+    faces, piece = outward_pieces(verts, faces)
     count = int(piece.max()) + 1
-    for inner in range(count):
-        point = verts[faces[piece == inner][0, 0]]
-        for outer in range(count):
-            if outer != inner and winding_number(verts, faces[piece == outer], point) > 0.5:
+    if count == 1:
+        return faces
+    parts = [faces[piece == k] for k in range(count)]
+    boxes = [(verts[part].min(axis=(0, 1)), verts[part].max(axis=(0, 1))) for part in parts]
+    for inner, part in enumerate(parts):
+        point = verts[part[0, 0]]
+        for outer, (lo, hi) in enumerate(boxes):
+            if outer != inner and np.all(point >= lo) and np.all(point <= hi) \
+                    and winding_number(verts, parts[outer], point) > 0.5:
                 raise InputError(f"{name} holds a closed surface inside another (piece "
                                  f"{inner + 1} of {count}, by its first triangle's corner "
                                  f"{np.round(point, 6).tolist()}): valid is a body's outer "
                                  "surface alone, each separate piece outside the others")
-
+    return faces
 
 def _read_stl(data: bytes, name: str) -> np.ndarray:
     """The (N, 3, 3) triangles of a binary STL, else of an ASCII one (starting "solid")."""

@@ -24,8 +24,9 @@ from floatfoam.hydrostatics.immersed_part import Immersed, nothing_immersed
 @functools.singledispatch
 def for_body(body, z_c: float, heel: float, trim: float) -> Immersed | None:
     """The exact immersed part of ``body`` at this attitude where a closed form is known,
-    else None: elliptic cylinders at any heel (no trim), conic cylinders and boxes upright,
-    ellipsoids at any attitude. Each shape registers its own; other bodies have none."""
+    else None: elliptic cylinders at any heel (no trim), conic cylinders, boxes and vertical
+    cylinders upright, ellipsoids at any attitude. Each shape registers its own; other bodies
+    have none."""
     return None
 
 

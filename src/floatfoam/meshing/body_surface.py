@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from floatfoam import gmshio
-from floatfoam.bodies.geometry import mesh_volume, to_earth
+from floatfoam.bodies.geometry import to_earth
 from floatfoam.meshing import sections
 from floatfoam.meshing.levels import MeshSpec
 from floatfoam.tank import Pose
@@ -81,9 +81,7 @@ def body_triangles(body, spec: MeshSpec) -> tuple[np.ndarray, np.ndarray]:
         gmsh.model.mesh.generate(2)
         boundary = gmsh.model.getBoundary([(3, volume)], oriented=False)
         vertices, faces = gmshio.surface_triangles([tag for _, tag in boundary])
-    if mesh_volume(vertices, faces) < 0.0:
-        faces = faces[:, ::-1].copy()
-    return vertices, faces
+    return vertices, faces  # outward (gmshio.surface_mesh)
 
 
 def place(vertices: np.ndarray, where: Pose) -> np.ndarray:

@@ -3,9 +3,9 @@
 * :func:`add_section`: the (y, z) section of a 2D body as closed curves in the plane x = x0,
   counter-clockwise seen from +x (circle, ellipse, box with bilge arcs, conic arc + deck);
 * :func:`add_meridian`: the meridian (r, z) of a body of revolution about z, in the plane y = 0
-  (one arc, both ends on the axis);
+  (an ellipsoid's arc, a vertical cylinder's three lines; both ends on the axis);
 * :func:`add_solid`: the body as an OpenCASCADE volume (ellipsoids by dilating a sphere,
-  sections by extruding their section along x).
+  sections by extruding their section along x, the vertical cylinder as one).
 
 The conic section y² = n x + m x² (x up from the vertex) is exact: each half is a rational
 quadratic Bézier arc (a conic arc for any weight; weight 1 is the parabola), from the vertex,

@@ -15,7 +15,7 @@ import numpy as np
 
 from floatfoam import gmshio
 from floatfoam.bodies import shapes as bodies
-from floatfoam.bodies.geometry import rotation
+from floatfoam.bodies.geometry import enclosed_volume, rotation
 from floatfoam.errors import InputError
 from floatfoam.meshing import sections
 from floatfoam.meshing.levels import MeshSpec
@@ -71,12 +71,7 @@ def _ellipsoid_surface(body: bodies.Ellipsoid, spec: MeshSpec, half: str | None
         vertices, triangles = gmshio.surface_triangles(faces)
     if half:
         vertices[np.abs(vertices[:, k]) < PLANE_EPS, k] = 0.0
-    # outward: away from the centre, about which an ellipsoid is star-shaped
-    corners = vertices[triangles]
-    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    if float(np.sum(normal * corners.mean(axis=1))) < 0.0:
-        triangles = triangles[:, ::-1].copy()
-    return vertices, triangles
+    return vertices, triangles  # outward (gmshio.surface_mesh)
 
 
 def half_surface(vertices: np.ndarray, faces: np.ndarray, half: str, spec: MeshSpec,
@@ -195,8 +190,6 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None, room
     edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
     edges = np.unique(np.sort(edges, axis=1), axis=0)
     degree = np.bincount(edges.ravel(), minlength=n).astype(float)
-    if enclosed_volume(v, faces) < 0.0:
-        faces = faces[:, ::-1]
     move = np.zeros(n)
     for _ in range(3):  # c by Newton's step on the enclosed volume, linear in it to O(move²)
         moved = v
@@ -237,14 +230,6 @@ def keep_volume(gmsh, surfaces: list[int], volume: float, half: str | None, room
     for node, point in zip(tags, v, strict=True):
         gmsh.model.mesh.setNode(int(node), point.tolist(), [])
     return largest
-
-
-def enclosed_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
-    """The volume a closed surface of outward triangles encloses, by ∮ z n_z dA: a half surface
-    open along a vertical plane x = 0 or y = 0 too (n_z vanishes on that plane)."""
-    c = vertices[faces]
-    cross = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])  # 2·area·n
-    return float(np.sum(cross[:, 2] * c[:, :, 2].mean(axis=1)) / 2.0)
 
 
 def _crease_nodes(vertices: np.ndarray, faces: np.ndarray, angle: float) -> np.ndarray:

@@ -34,9 +34,9 @@ def _frees_only(case, names) -> bool:
 def half_plane(case, where: Pose) -> str | None:
     """The symmetry plane the body and its motion keep, "x" (x = 0: no trim, no DoF freed
     out of the (y, z) plane) or "y" (y = 0: no heel, none out of the (x, z) plane), for a
-    body symmetric about it (an ellipsoid or sphere about both; a body given by triangles, STL
-    or implicit, where :func:`floatfoam.bodies.mirror.mirror_planes` finds it) with G on it;
-    None otherwise, or when ``mesh.gmsh.half_3d`` is false."""
+    body symmetric about it (an ellipsoid, a sphere or a vertical cylinder about both; a body
+    given by triangles, STL or implicit, where :func:`floatfoam.bodies.mirror.mirror_planes`
+    finds it) with G on it; None otherwise, or when ``mesh.gmsh.half_3d`` is false."""
     if not case.settings.mesh.gmsh.half_3d:
         return None
     planes = case.body.mirror_planes
