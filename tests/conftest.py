@@ -48,22 +48,6 @@ def pytest_collection_modifyitems(config, items):
                                      item.path.parent.name != "cluster"))
 
 
-#: the niceness of a worker's test that does not run the solver, beside the other worker's
-#: solver: a 2-rank run goes at its slower rank's pace, and a rank sharing its core half and half
-#: with a unit test halves the run's speed while the test gets half a core
-BESIDE_THE_SOLVER = 10
-
-
-def _yield_to_the_solver(beside: bool) -> None:
-    """This worker's priority for the test it starts: below the solver's (BESIDE_THE_SOLVER)
-    for a test that does not run it, the usual one for a test that does (its ranks, meshing and
-    analysis inherit it). Raising a priority needs root; without it the worker stays niced."""
-    try:
-        os.setpriority(os.PRIO_PROCESS, 0, BESIDE_THE_SOLVER if beside else 0)
-    except PermissionError:
-        pass
-
-
 @pytest.fixture(autouse=True)
 def one_solver_at_a_time(request, tmp_path_factory, monkeypatch):
     """The session's workers run one solver at a time: its ranks take the cores, and two runs
@@ -71,10 +55,7 @@ def one_solver_at_a_time(request, tmp_path_factory, monkeypatch):
     runs the solver names a lock shared by the workers (beside the session's own temporary
     folder) in FLOATFOAM_SOLVER_LOCK, which its runs hold while their solver runs (meshing,
     potential flow and analysis go on beside the other worker's solver); the Slurm tests, whose
-    jobs take the submitter's environment, hold it from start to end instead. Under the two
-    workers a test that does not run the solver runs niced (:func:`_yield_to_the_solver`)."""
-    if hasattr(request.config, "workerinput"):  # under make test's two workers
-        _yield_to_the_solver(request.node.get_closest_marker("openfoam") is None)
+    jobs take the submitter's environment, hold it from start to end instead."""
     if request.node.get_closest_marker("openfoam") is None:
         yield
         return
