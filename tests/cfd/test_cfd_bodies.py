@@ -332,11 +332,12 @@ def test_capsizing_ellipse_turns_over_to_its_stable_attitude(tmp_path):
         assert (tall > wide) == (heel < 45.0), (when, heel, wide, tall)
 
 
+@pytest.mark.extended  # make test-extended: make test's 20 minutes hold the STL body's 3D roll
 def test_triaxial_ellipsoid_roll_3d(tmp_path):
     """The triaxial ellipsoid (0.20, 0.15, 0.10) m released heeled 10°, in 3D on the half
     domain x ≥ 0 (symmetry plane x = 0, which its roll keeps), on a record of 0.2 s, past its
     first zero crossing (a quarter period; the whole 3.6 s runs under `make ellipsoid_roll`, the
-    first trough and G's sway under make test-extended): stable, the first crossing within 5 %
+    first trough and G's sway below): stable, the first crossing within 5 %
     of Cummins' model free in sway, heave and roll as the CFD body (measured 0.1634 s against
     0.1633 s, +0.04 %), where the memoir's linear model without added inertia crosses 11 %
     earlier (0.1458 s); the draft within 1 %."""
@@ -352,7 +353,7 @@ def test_triaxial_ellipsoid_roll_3d(tmp_path):
     assert np.mean(motion["z"]) == pytest.approx(info.z_G_equilibrium, abs=0.01 * theory.draft)
 
 
-@pytest.mark.extended  # make test-extended: make test's 20 minutes hold the quarter period
+@pytest.mark.extended  # make test-extended, as the quarter period
 def test_triaxial_ellipsoid_roll_3d_first_trough_and_sway(tmp_path):
     """ellipsoid_roll as above on a record of 0.35 s, through its first trough at 0.324 s: the
     time of the first trough (half the period) within 5 % of Cummins' model (measured 0.3234 s
