@@ -100,6 +100,7 @@ def _outward(verts: np.ndarray, faces: np.ndarray, name: str) -> np.ndarray:
                                  "surface alone, each separate piece outside the others")
     return faces
 
+
 def _read_stl(data: bytes, name: str) -> np.ndarray:
     """The (N, 3, 3) triangles of a binary STL, else of an ASCII one (starting "solid")."""
     triangles = _read_binary_stl(data, name)

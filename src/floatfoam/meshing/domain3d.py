@@ -170,8 +170,9 @@ def _domain_3d(case, spec: MeshSpec, tank: Tank, where: Pose, path: Path, half: 
 
 def _volume_of(body, half: str | None) -> float:
     """The volume the body's meshed surface must enclose: the body's own (an ellipsoid's or a
-    section's exact one; that of a body's triangles, which the theory takes, an implicit
-    body's as marching cubes give them); half of it with ``half``."""
+    vertical cylinder's exact one, a section's from its fine polygon; that of a body's
+    triangles, which the theory takes, an implicit body's as marching cubes give them); half
+    of it with ``half``."""
     volume = abs(body.volume())
     return volume / 2.0 if half else volume
 
