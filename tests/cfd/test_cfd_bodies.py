@@ -21,6 +21,7 @@ from cfdcases import (
     extrema,
     first_sway,
     potential_period,
+    refined_extrema,
     shared_run,
 )
 from steps import FAST_STEP
@@ -180,6 +181,37 @@ def test_a_vertical_cylinder_heaves_in_a_wedge(tmp_path):
     assert decay["period_mean"] == pytest.approx(expected, rel=0.03)
     assert decay["period_mean"] > 1.1 * theory.period("heave")
     assert decay["equilibrium"] == pytest.approx(info.z_G_equilibrium, abs=0.01 * theory.draft)
+
+
+IMPLICIT_SPHERE = """[body]
+shape = "implicit"
+expression = "x**2 + y**2 + z**2 - 0.01"
+bounds = [[-0.11, -0.11, -0.11], [0.11, 0.11, 0.11]]
+resolution = 60
+[mass]
+density = 500.0
+cog = [0.0, 0.0, -0.02]
+gyradius = [0.06325, 0.06325, 0.06325]
+[release]
+heave = 0.01
+"""
+
+
+def test_a_body_of_revolution_given_by_triangles_heaves_in_a_wedge(tmp_path):
+    """The `sphere` case's body written as a user's implicit surface (triangles): found to be
+    a body of revolution, it heaves in the wedge, not in the 3D tank (whose first crest came
+    0.3–0.9 % early and whose record's T_d scattered from −2.4 to +2.6 %:
+    docs/studies/cases/superellipsoid_buoy.md). Its first trough and crest (0.7 s, make test's
+    step) within 0.6 % of Cummins' model's: at this step the `sphere` case's own wedge puts
+    them +0.34 % and +0.12 % from it, these triangles +0.40 % and +0.08 % (measured)."""
+    folder = tmp_path / "buoy"
+    folder.mkdir()
+    (folder / "case.toml").write_text(IMPLICIT_SPHERE)
+    case, _, motion, info = cfd(str(folder), tmp_path, ["run.end_time=0.7", *FAST_STEP])
+    assert info.mesh == "wedge"
+    series = cummins(case)
+    assert refined_extrema(motion["time"], motion["z"], 2) == pytest.approx(
+        refined_extrema(series["time"], series["z"], 2), rel=0.006)
 
 
 def test_lab_sphere_first_cycle_against_the_basin(tmp_path):

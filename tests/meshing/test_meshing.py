@@ -261,6 +261,7 @@ g = 9.81
 [mesh.gmsh]
 body_cells_3d = 6
 layers_3d = 3
+wedge = false
 """
 SPHERE_3D = """[body]
 shape = "implicit"
@@ -510,6 +511,8 @@ cog = [0.0, 0.0, -0.15]
 gyradius = [0.2, 0.2, 0.1]
 [release]
 heave = 0.02
+[mesh.gmsh]
+wedge = false
 """
 
 

@@ -274,6 +274,18 @@ class MeshBody(Body):
         return int(outward_pieces(self.vertices, self.faces)[1].max()) + 1
 
     @cached_property
+    def meridian(self) -> np.ndarray | None:
+        """The meridian (r, z) of a body of revolution about z, keel to top, each end on the
+        axis; None when the triangles are not one (:func:`floatfoam.bodies.revolution.meridian`)."""
+        from floatfoam.bodies.revolution import meridian
+
+        return meridian(self.vertices, self.faces)
+
+    @property
+    def is_axisymmetric(self) -> bool:
+        return self.meridian is not None
+
+    @cached_property
     def mirror_planes(self) -> tuple[str, ...]:
         """The planes x = 0 and y = 0 ("x", "y") the body is mirror symmetric about
         (:func:`floatfoam.bodies.mirror.mirror_planes`)."""

@@ -3,7 +3,8 @@
 * :func:`add_section`: the (y, z) section of a 2D body as closed curves in the plane x = x0,
   counter-clockwise seen from +x (circle, ellipse, box with bilge arcs, conic arc + deck);
 * :func:`add_meridian`: the meridian (r, z) of a body of revolution about z, in the plane y = 0
-  (an ellipsoid's arc, a vertical cylinder's three lines; both ends on the axis);
+  (an ellipsoid's arc, a vertical cylinder's three lines, splines through a body of
+  revolution's triangles' meridian; both ends on the axis);
 * :func:`add_solid`: the body as an OpenCASCADE volume (ellipsoids by dilating a sphere,
   sections by extruding their section along x, the vertical cylinder as one).
 
@@ -47,13 +48,16 @@ def _ellipse(body: bodies.EllipticCylinder, occ, x0: float) -> list[int]:
 
 
 def add_meridian(body) -> list[int]:
-    """Curves of the meridian of an ellipsoid of revolution about z (semi-axes a, a, c), or of
-    a vertical cylinder, in the (x = r, z) half-plane y = 0, from the keel (r = 0) to the top."""
+    """Curves of the meridian of an ellipsoid of revolution about z (semi-axes a, a, c), of a
+    vertical cylinder or of a body of revolution given by triangles, in the (x = r, z)
+    half-plane y = 0, from the keel (r = 0) to the top."""
     import gmsh
 
     if not body.is_axisymmetric:
         raise TypeError(f"{type(body).__name__} is not a body of revolution about z")
     occ = gmsh.model.occ
+    if isinstance(body, bodies.MeshBody):
+        return _profile_curves(occ, body.meridian)
     if isinstance(body, bodies.VerticalCylinder):  # keel, bottom rim, top rim, top
         corners = [occ.addPoint(r, 0.0, z) for r, z in
                    ((0.0, -body.h / 2), (body.r, -body.h / 2), (body.r, body.h / 2),
@@ -70,6 +74,28 @@ def add_meridian(body) -> list[int]:
     # major axis along z: local x = z, local y = x; angle 0 is the top, π the keel
     return [occ.addEllipse(0.0, 0.0, 0.0, c, a, angle1=0.0, angle2=math.pi,
                            zAxis=[0, 1, 0], xAxis=[0, 0, 1])]
+
+
+#: a meridian given by points turns at a corner where its chords turn by more than this
+CORNER_DEGREES = 30.0
+
+
+def _profile_curves(occ, profile: np.ndarray) -> list[int]:
+    """The meridian through the points (r, z) of a body of revolution given by triangles
+    (:func:`floatfoam.bodies.revolution.meridian`), in the half-plane y = 0: a spline through
+    each run of points between corners (a turn of the chords above :data:`CORNER_DEGREES`; the
+    ends on the axis), a line where a run has two."""
+    chords = np.diff(profile, axis=0)
+    heading = np.arctan2(chords[:, 1], chords[:, 0])
+    turn = np.abs((np.diff(heading) + math.pi) % (2.0 * math.pi) - math.pi)
+    corners = [0, *(np.flatnonzero(turn > math.radians(CORNER_DEGREES)) + 1),
+               len(profile) - 1]
+    tags = [occ.addPoint(float(r), 0.0, float(z)) for r, z in profile]
+    curves = []
+    for start, end in zip(corners[:-1], corners[1:], strict=True):
+        run = tags[start:end + 1]
+        curves.append(occ.addLine(*run) if len(run) == 2 else occ.addSpline(run))
+    return curves
 
 
 def add_solid(body) -> int:

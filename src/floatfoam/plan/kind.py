@@ -1,6 +1,7 @@
 """The kind of fluid domain a run's body is meshed in, from the body, its pose and the case:
 ``2d`` (a 2D section, one cell thick), ``wedge`` (a body of revolution about z, upright, in
-heave), ``3d-half`` (x ≥ 0 and a symmetry plane x = 0 for a heel or a heave, y ≥ 0 and y = 0
+heave: a shape of revolution, or triangles found to be one, unless ``mesh.gmsh.wedge`` is
+false), ``3d-half`` (x ≥ 0 and a symmetry plane x = 0 for a heel or a heave, y ≥ 0 and y = 0
 for a trim: a body symmetric about that plane and a motion that keeps it), ``3d`` otherwise
 (:func:`default_kind`, :func:`half_plane`); and what each kind admits (prism layers, the DoFs
 the body can move in)."""
@@ -20,8 +21,8 @@ def default_kind(case, where: Pose) -> str:
     """The lightest domain that represents the case at this pose."""
     if case.body.is_section and where.trim == 0.0:
         return "2d"
-    if case.body.is_axisymmetric and where.heel == 0.0 and where.trim == 0.0 \
-            and _frees_only(case, ("heave",)):
+    if case.settings.mesh.gmsh.wedge and case.body.is_axisymmetric and where.heel == 0.0 \
+            and where.trim == 0.0 and _frees_only(case, ("heave",)):
         return "wedge"
     return "3d-half" if half_plane(case, where) else "3d"
 
@@ -51,12 +52,15 @@ def half_plane(case, where: Pose) -> str | None:
 
 def check_layers(case, kind: str) -> None:
     """Prism layers (``mesh.gmsh.layers_3d``) are made in 3D domains only: asked for in a
-    2D slab or a wedge they are refused, not silently left out."""
+    2D slab or a wedge they are refused, not silently left out (left out, a body given by
+    triangles takes them in 3D alone)."""
     layers = case.settings.mesh.gmsh.layers_3d
-    if layers and kind not in ("3d", "3d-half"):
+    asked = "layers_3d" in case.raw.get("mesh", {}).get("gmsh", {})
+    if layers and asked and kind not in ("3d", "3d-half"):
+        other = ", or mesh.gmsh.wedge = false (a 3D tank)" if kind == "wedge" else ""
         raise InputError(f"mesh.gmsh.layers_3d = {layers}: prism layers are made in 3D domains "
                          f"only, and {case.name} meshes a {kind} domain at its release; valid "
-                         "is 0")
+                         f"is 0{other}")
 
 
 #: the DoFs a body can move in in each domain: a 2D slab (x one cell thick) and a half domain

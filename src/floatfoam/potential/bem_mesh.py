@@ -48,13 +48,23 @@ def wetted_triangles(body, z_c: float, heel: float, trim: float) -> np.ndarray:
     return clip_triangles(triangles[~in_surface])
 
 
-def merge_vertices(triangles: np.ndarray, rel_tol: float = 1e-9):
-    """Indexed mesh (vertices, faces) of a triangle soup; coincident vertices merged and
-    triangles that collapse to a segment dropped."""
+def merge_vertices(triangles: np.ndarray, rel_tol: float = 1e-7):
+    """Indexed mesh (vertices, faces) of a triangle soup; vertices within ``rel_tol`` × the
+    largest coordinate of each other merged and triangles that collapse to a segment dropped.
+    The wetted part of a marching-cubes surface, cut at the free surface and a symmetry plane,
+    held edges of 1e-10 m (1e-9 of its size) across which gmsh's reparametrisation of the
+    surface never ended (the implicit sphere at a resolution of 80)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
     points = triangles.reshape(-1, 3)
     scale = float(np.abs(points).max()) or 1.0
-    keys = np.round(points / (scale * rel_tol)).astype(np.int64)
-    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    pairs = cKDTree(points).query_pairs(scale * rel_tol, output_type="ndarray")
+    n = len(points)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, label = connected_components(graph, directed=False)
+    _, first, inverse = np.unique(label, return_index=True, return_inverse=True)
     faces = inverse.reshape(-1, 3)
     degenerate = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) \
         | (faces[:, 2] == faces[:, 0])
