@@ -84,7 +84,9 @@ def _profile_curves(occ, profile: np.ndarray) -> list[int]:
     """The meridian through the points (r, z) of a body of revolution given by triangles
     (:func:`floatfoam.bodies.revolution.meridian`), in the half-plane y = 0: a spline through
     each run of points between corners (a turn of the chords above :data:`CORNER_DEGREES`; the
-    ends on the axis), a line where a run has two."""
+    ends on the axis), a line where a run has two. Through an STL's rings the spline is the
+    smooth body its facets are chords of, a little larger than they are (a hemisphere of 12
+    rings: 0.4 %, which the run's volume line reports)."""
     chords = np.diff(profile, axis=0)
     heading = np.arctan2(chords[:, 1], chords[:, 0])
     turn = np.abs((np.diff(heading) + math.pi) % (2.0 * math.pi) - math.pi)

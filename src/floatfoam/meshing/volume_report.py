@@ -68,7 +68,7 @@ def discrete_volume_report(case, level: str, equilibrium=None) -> dict:
         **_compare(body.volume(), total, eq.immersed.volume, immersed, eq.z_c, spec.span),
         "release_heave": case.release["heave"],
     }
-    if body.is_axisymmetric and eq.heel == 0.0 and eq.trim == 0.0:
+    if eq.heel == 0.0 and eq.trim == 0.0 and body.is_axisymmetric:
         report["meridian"] = _meridian(body, spec, eq)
     return report
 

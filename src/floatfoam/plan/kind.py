@@ -21,8 +21,8 @@ def default_kind(case, where: Pose) -> str:
     """The lightest domain that represents the case at this pose."""
     if case.body.is_section and where.trim == 0.0:
         return "2d"
-    if case.settings.mesh.gmsh.wedge and case.body.is_axisymmetric and where.heel == 0.0 \
-            and where.trim == 0.0 and _frees_only(case, ("heave",)):
+    if where.heel == 0.0 and where.trim == 0.0 and _frees_only(case, ("heave",)) \
+            and case.settings.mesh.gmsh.wedge and case.body.is_axisymmetric:
         return "wedge"
     return "3d-half" if half_plane(case, where) else "3d"
 
