@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from floatfoam.bodies.geometry import extrude_polygon, icosphere, mesh_volume
+from floatfoam.bodies.geometry import extrude_polygon, icosphere, mesh_volume, open_edges
 from floatfoam.bodies.revolution import REVOLUTION_TOLERANCE, cross_section, meridian
 from floatfoam.bodies.shapes import VerticalCylinder
 from floatfoam.case import load_case, with_overrides
@@ -58,6 +58,51 @@ def test_a_sphere_in_rings_has_its_triangles_volume_and_its_ends_on_the_axis():
     assert revolved_volume(profile) / mesh_volume(vertices, faces) - 1 == pytest.approx(0,
                                                                                     abs=2e-5)
     assert mesh_volume(vertices, faces) / (4 / 3 * math.pi * 0.1**3) < 0.997
+
+
+def test_rings_scattered_in_single_precision_and_a_flange():
+    """An STL's ring heights scatter by ~1e-7 of its coordinates: the rings are still one point
+    each (33 on a sphere of 32 rings). A cylinder on a wider one (a flange) steps: two points at
+    the step's height, each side's radius from its own cross-sections."""
+    vertices, faces = rings_sphere(0.1, 32, 64)
+    clean = meridian(vertices, faces)
+    noisy = vertices * (1.0 + 1e-7 * np.random.default_rng(1).standard_normal(vertices.shape))
+    profile = meridian(noisy, faces)
+    assert len(profile) == len(clean) == 33
+    assert revolved_volume(profile) / mesh_volume(noisy, faces) - 1 == pytest.approx(0, abs=1e-5)
+    vertices, faces = _stacked(_cylinder(0.1, -0.1, 0.0), _cylinder(0.05, 0.0, 0.1))
+    assert open_edges(faces) == 0
+    profile = meridian(vertices, faces)
+    steps = profile[np.isclose(profile[:, 1], 0.0)]
+    area = 0.5 * 96 * math.sin(2 * math.pi / 96)
+    assert sorted(steps[:, 0]) == pytest.approx([0.05 * math.sqrt(area / math.pi),
+                                                 0.1 * math.sqrt(area / math.pi)], rel=1e-6)
+
+
+def test_a_rounded_keel_under_a_long_wall_is_a_spline_and_a_line():
+    """A hemisphere's 12 rings and then a wall 5 × its radius high with no ring between: the
+    wall is a line (a chord 3 × longer than its neighbour), so the keel's spline does not swing
+    across the axis, as one spline through both would (to r = −0.035 m)."""
+    import gmsh
+
+    from floatfoam.meshing.sections import _profile_curves
+
+    lat = np.linspace(0, math.pi / 2, 13)[1:]
+    profile = np.array([(0.0, -0.05), *[(0.05 * math.sin(t), -0.05 * math.cos(t)) for t in lat],
+                        (0.05, 0.25), (0.0, 0.25)])
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Verbosity", 0)
+        curves = _profile_curves(gmsh.model.occ, profile)
+        gmsh.model.occ.synchronize()
+        radii = []
+        for curve in curves:
+            lo, hi = gmsh.model.getParametrizationBounds(1, curve)
+            values = gmsh.model.getValue(1, curve, list(np.linspace(lo[0], hi[0], 100)))
+            radii.append(min(values[0::3]))
+    finally:
+        gmsh.finalize()
+    assert len(curves) == 3 and min(radii) > -1e-12
 
 
 def test_a_sphere_not_in_rings_and_a_vertical_cylinder():
@@ -148,6 +193,24 @@ def test_a_body_of_revolution_given_by_triangles_heaves_in_a_wedge(tmp_path):
         assert kind == "3d-half"
 
 
+def test_an_implicit_float_with_a_sharp_rim(tmp_path):
+    """A hemisphere under a cylinder with a flat top, written as an implicit surface: marching
+    cubes round its top rim by a chamfer aligned with its grid, 2 % out of round within a
+    grid cell of the top, where a cross-section is not asked to be round. A body of
+    revolution, its meridian's top a corner at the rim's radius."""
+    (tmp_path / "case.toml").write_text(
+        '[body]\nshape = "implicit"\nexpression = "minimum(maximum(sqrt(x**2 + y**2 + z**2) '
+        '- 0.15, z), maximum(sqrt(x**2 + y**2) - 0.15, abs(z - 0.05) - 0.05))"\n'
+        'bounds = [[-0.16, -0.16, -0.16], [0.16, 0.16, 0.11]]\nresolution = 80\n'
+        '[mass]\ndensity = 400.0\ncog = [0.0, 0.0, -0.04]\ngyradius = [0.08, 0.08, 0.08]\n')
+    body = load_case(str(tmp_path)).body
+    assert body.is_axisymmetric
+    top = body.meridian[-2]
+    assert top[1] == pytest.approx(0.1, abs=1e-6) and top[0] == pytest.approx(0.15, rel=0.02)
+    # the chords between 161 levels, as the icosphere's (measured −2.8e-5)
+    assert revolved_volume(body.meridian) / body.volume() - 1 == pytest.approx(0, abs=2e-4)
+
+
 def test_layers_are_refused_in_a_wedge_only_when_asked(tmp_path):
     """Left out, the prism layers of a body given by triangles are a 3D default and a wedge
     takes none; asked for, a wedge refuses them in one line naming the way to 3D."""
@@ -170,6 +233,40 @@ def _torus(big: float, small: float, n: int = 48, m: int = 24):
             pj, qj = i * m + (j + 1) % m, ((i + 1) % n) * m + (j + 1) % m
             faces += [(p, q, qj), (p, qj, pj)]
     faces = np.array(faces)
+    return (vertices, faces) if mesh_volume(vertices, faces) > 0 else (vertices, faces[:, ::-1])
+
+
+def _cylinder(radius: float, bottom: float, top: float, n: int = 96):
+    """A vertical cylinder of ``n`` sides between two heights: vertices, faces, outward."""
+    a = np.linspace(0, 2 * math.pi, n, endpoint=False)
+    ring = radius * np.column_stack([np.cos(a), np.sin(a)])
+    vertices = np.vstack([np.column_stack([ring, np.full(n, bottom)]),
+                          np.column_stack([ring, np.full(n, top)]),
+                          [[0.0, 0.0, bottom], [0.0, 0.0, top]]])
+    faces = []
+    for j in range(n):
+        k = (j + 1) % n
+        faces += [(j, k, n + k), (j, n + k, n + j), (2 * n, k, j), (2 * n + 1, n + j, n + k)]
+    faces = np.array(faces)
+    return (vertices, faces) if mesh_volume(vertices, faces) > 0 else (vertices, faces[:, ::-1])
+
+
+def _stacked(wide, narrow):
+    """A narrow cylinder standing on a wide one (their shared face's disc left out of both):
+    one closed surface, the wide top an annulus joined to the narrow bottom's ring."""
+    (wv, wf), (nv, nf) = wide, narrow
+    n = (len(wv) - 2) // 2
+    top_centre, bottom_centre = 2 * n + 1, 2 * n
+    wf = wf[~np.isin(wf, [top_centre]).any(axis=1)]  # the wide top's fan, replaced below
+    nf = nf[~np.isin(nf, [bottom_centre]).any(axis=1)] + len(wv)
+    annulus = []
+    for j in range(n):
+        k = (j + 1) % n
+        a, b = n + j, n + k  # the wide top ring
+        c, d = len(wv) + j, len(wv) + k  # the narrow bottom ring
+        annulus += [(a, b, d), (a, d, c)]
+    faces = np.vstack([wf, nf, annulus])
+    vertices = np.vstack([wv, nv])
     return (vertices, faces) if mesh_volume(vertices, faces) > 0 else (vertices, faces[:, ::-1])
 
 

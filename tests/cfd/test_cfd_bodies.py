@@ -199,8 +199,8 @@ heave = 0.01
 
 def test_a_body_of_revolution_given_by_triangles_heaves_in_a_wedge(tmp_path):
     """The `sphere` case's body written as a user's implicit surface (triangles): found to be
-    a body of revolution, it heaves in the wedge, not in the 3D tank (whose first crest came
-    0.3–0.9 % early and whose record's T_d scattered from −2.4 to +2.6 %:
+    a body of revolution, it heaves in the wedge, not in the 3D tank (whose first crest comes
+    0.3–0.9 % early and whose record's T_d scatters from −2.4 to +2.6 %:
     docs/studies/cases/superellipsoid_buoy.md). Its first trough and crest (0.7 s, make test's
     step) within 0.6 % of Cummins' model's: at this step the `sphere` case's own wedge puts
     them +0.34 % and +0.12 % from it, these triangles +0.40 % and +0.08 % (measured)."""

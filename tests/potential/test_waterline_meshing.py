@@ -69,9 +69,10 @@ def test_waterline_near_the_equator_meshes(case, density):
 
 def test_a_marching_cubes_hull_with_slivers_at_its_cuts_meshes(tmp_path):
     """The implicit sphere of radius 0.1 m at a resolution of 80, half immersed: its wetted
-    triangles, cut at the free surface and the symmetry planes, held edges of 1e-10 m, on
-    which gmsh's reparametrisation never returned (they are merged now: bem_mesh.merge_vertices).
-    Its hull the hemisphere's area within 1 %, as the icosphere's above."""
+    triangles, cut at the free surface and the symmetry planes, have edges of 1e-10 m, on
+    which gmsh's reparametrisation does not return unless they are merged
+    (bem_mesh.merge_vertices). Its hull the hemisphere's area within 1 %, as the icosphere's
+    above."""
     (tmp_path / "case.toml").write_text(
         '[body]\nshape = "implicit"\nexpression = "x**2 + y**2 + z**2 - 0.01"\n'
         'bounds = [[-0.11, -0.11, -0.11], [0.11, 0.11, 0.11]]\nresolution = 80\n'

@@ -32,6 +32,9 @@ LEVELS = 161
 #: a meridian point this near the axis (× the largest radius) is left out: the end on the
 #: axis stands for it
 AXIS_ROOM = 1e-3
+#: the radii a ring's cross-sections give from below and from above, each extrapolated to the
+#: ring, differ by more than this (× the largest radius) where the profile steps (a flange)
+STEP = 1e-3
 
 
 def meridian(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray | None:
@@ -46,26 +49,50 @@ def meridian(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray | None:
     if height <= 0.0 or largest <= 0.0:
         return None
     tol = REVOLUTION_TOLERANCE * largest
-    # a cross-section's distance from the ring it stands for: above the scatter of an STL's
-    # single-precision heights in a ring (~1e-7 of its coordinates)
+    spans = z[faces].min(axis=1), z[faces].max(axis=1)
+    # within a triangle's edge of the keel or the top (and 5 % of the height), a cross-section
+    # may cut the chamfer by which marching cubes round a sharp rim (grid-aligned: 2 % out of
+    # round at a float's top rim) and is not asked to be round; its area still sets the radius
+    edges = np.linalg.norm(vertices[faces] - vertices[np.roll(faces, 1, axis=1)], axis=2)
+    ends = min(float(np.median(edges)), 0.05 * height)
+
+    def radius(level):
+        inside = lo + ends < level < hi - ends
+        return _radius(vertices, faces, level, tol if inside else math.inf, spans)
+
+    # heights closer than this are one ring: an STL's single-precision heights in a ring
+    # scatter by ~1e-7 of its coordinates
     gap = 1e-5 * height
-    rings = np.unique(np.round((z - lo) / height, 6)) * height + lo
+    heights = np.sort(z)
+    starts = np.concatenate([[0], np.flatnonzero(np.diff(heights) > gap) + 1])
     points = []
-    if len(rings) <= RINGS:  # each ring: a cross-section just below and just above it
+    if len(starts) <= RINGS:
+        rings = np.add.reduceat(heights, starts) / np.diff(np.append(starts, len(heights)))
+        rings[0], rings[-1] = lo, hi
+        middles = (rings[1:] + rings[:-1]) / 2.0  # between rings, round too (a prism's)
+        if any(radius(level) is None for level in middles):
+            return None
         for ring in rings:
-            radii = [_radius(vertices, faces, level, tol) for level in (ring - gap, ring + gap)
-                     if lo < level < hi]
-            if any(r is None for r in radii):
-                return None
-            if len(radii) == 2 and abs(radii[1] - radii[0]) > 1e-4 * largest:
-                points += [(radii[0], ring), (radii[1], ring)]  # a step in the profile
-            else:
-                points.append((float(np.mean(radii)), ring))
+            # the radius at the ring from below and from above, each extrapolated from two
+            # cross-sections clear of its heights: where they differ the profile steps
+            sides = []
+            for sign in (-1.0, 1.0):
+                near, far = ring + 2.0 * sign * gap, ring + 4.0 * sign * gap
+                if not lo < far < hi:
+                    continue
+                pair = radius(near), radius(far)
+                if None in pair:
+                    return None
+                sides.append(max(2.0 * pair[0] - pair[1], 0.0))
+            if len(sides) == 2 and abs(sides[1] - sides[0]) > STEP * largest:
+                points += [(sides[0], ring), (sides[1], ring)]
+            elif sides:
+                points.append((float(np.mean(sides)), ring))
     else:
         fractions = (1.0 - np.cos(np.linspace(0.0, math.pi, LEVELS))) / 2.0
         levels = np.clip(lo + fractions * height, lo + gap, hi - gap)
         for level in levels:
-            r = _radius(vertices, faces, float(level), tol)
+            r = radius(float(level))
             if r is None:
                 return None
             points.append((r, float(min(max(level, lo), hi))))
@@ -75,11 +102,12 @@ def meridian(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray | None:
     return np.array([(0.0, lo), *profile, (0.0, hi)])
 
 
-def _radius(vertices: np.ndarray, faces: np.ndarray, level: float, tol: float) -> float | None:
+def _radius(vertices: np.ndarray, faces: np.ndarray, level: float, tol: float,
+            spans: tuple[np.ndarray, np.ndarray] | None = None) -> float | None:
     """The radius of the circle of the cross-section's area at height ``level``, when the
-    cross-section is one loop about the axis whose points lie within ``tol`` of that circle;
-    None otherwise."""
-    loops = cross_section(vertices, faces, level)
+    cross-section is one loop about the axis (its centroid within ``tol`` of it) whose points
+    lie within ``tol`` of that circle; None otherwise."""
+    loops = cross_section(vertices, faces, level, spans)
     if len(loops) != 1:
         return None
     x, y = loops[0][:, 0], loops[0][:, 1]
@@ -95,15 +123,16 @@ def _radius(vertices: np.ndarray, faces: np.ndarray, level: float, tol: float) -
     return r
 
 
-def cross_section(vertices: np.ndarray, faces: np.ndarray, level: float) -> list[np.ndarray]:
+def cross_section(vertices: np.ndarray, faces: np.ndarray, level: float,
+                  spans: tuple[np.ndarray, np.ndarray] | None = None) -> list[np.ndarray]:
     """The closed loops (each (n, 2), x and y) in which the plane z = ``level`` cuts a closed
     triangle mesh (none where the surface is not closed along the plane). A vertex on the
     plane counts as below it, so every cut triangle has two edges across it, each shared by
-    two cut triangles."""
-    above = vertices[:, 2] > level
-    side = above[faces]
-    cut = side.any(axis=1) & ~side.all(axis=1)
-    tri, side = faces[cut], side[cut]
+    two cut triangles. ``spans``: each face's lowest and highest vertex height, when known."""
+    low, high = spans if spans is not None else (vertices[faces, 2].min(axis=1),
+                                                 vertices[faces, 2].max(axis=1))
+    tri = faces[(low <= level) & (high > level)]
+    side = vertices[tri, 2] > level
     if len(tri) == 0:
         return []
     edges = np.stack([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]], axis=1)

@@ -68,7 +68,8 @@ def discrete_volume_report(case, level: str, equilibrium=None) -> dict:
         **_compare(body.volume(), total, eq.immersed.volume, immersed, eq.z_c, spec.span),
         "release_heave": case.release["heave"],
     }
-    if eq.heel == 0.0 and eq.trim == 0.0 and body.is_axisymmetric:
+    if eq.heel == 0.0 and eq.trim == 0.0 and case.settings.mesh.gmsh.wedge \
+            and body.is_axisymmetric:
         report["meridian"] = _meridian(body, spec, eq)
     return report
 

@@ -59,8 +59,11 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
 def _resolved_motion(case: Case, release: Pose | None) -> list | None:
     """How the run's mesh follows the body once "auto" and the distances' defaults are
     resolved (:func:`floatfoam.plan.zone.of_case`): ["laplacian"], or ["distances", inner,
-    outer]; a rule that resolves them otherwise makes the runs made before it foreign. None
-    when the case's release or tank is refused (so is its run)."""
+    outer], and "wedge" after them for a body given by triangles meshed as one; a rule that
+    resolves them otherwise makes the runs made before it foreign. None when the case's
+    release or tank is refused (so is its run)."""
+    from floatfoam.plan.kind import kind_of
+
     try:
         if release is None:
             from floatfoam.hydrostatics.theory import equilibrium
@@ -68,11 +71,15 @@ def _resolved_motion(case: Case, release: Pose | None) -> list | None:
 
             release = release_state(case, equilibrium(case))["pose"]
         mesh = zone.of_case(case, release)
+        # a body given by triangles may be found to be of revolution and meshed as a wedge:
+        # its run then is not the 3D one made of the same case file
+        wedge = ["wedge"] if case.body.given_by_triangles and \
+            kind_of(case, release) == "wedge" else []
     except InputError:
         return None
     if mesh.motion != "distances":
-        return [mesh.motion]
-    return [mesh.motion, float(f"{mesh.inner:.9g}"), float(f"{mesh.outer:.9g}")]
+        return [mesh.motion, *wedge]
+    return [mesh.motion, float(f"{mesh.inner:.9g}"), float(f"{mesh.outer:.9g}"), *wedge]
 
 
 def _stamped_keys(values: dict, stamped: dict) -> dict:

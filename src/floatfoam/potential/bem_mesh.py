@@ -51,9 +51,9 @@ def wetted_triangles(body, z_c: float, heel: float, trim: float) -> np.ndarray:
 def merge_vertices(triangles: np.ndarray, rel_tol: float = 1e-7):
     """Indexed mesh (vertices, faces) of a triangle soup; vertices within ``rel_tol`` × the
     largest coordinate of each other merged and triangles that collapse to a segment dropped.
-    The wetted part of a marching-cubes surface, cut at the free surface and a symmetry plane,
-    held edges of 1e-10 m (1e-9 of its size) across which gmsh's reparametrisation of the
-    surface never ended (the implicit sphere at a resolution of 80)."""
+    A marching-cubes surface cut at the free surface and a symmetry plane can hold edges of
+    1e-10 m (the implicit sphere of radius 0.1 m at a resolution of 80), on which gmsh's
+    reparametrisation of the surface does not return."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
