@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from bodycases import IMPLICIT_SPHERE as SPHERE
 
 from floatfoam.bodies.geometry import extrude_polygon, icosphere, mesh_volume, open_edges
 from floatfoam.bodies.revolution import REVOLUTION_TOLERANCE, cross_section, meridian
@@ -157,18 +158,6 @@ def test_a_cross_section_is_its_loops():
     assert cross_section(vertices, faces, 0.04) == []
 
 
-SPHERE = """[body]
-shape = "implicit"
-expression = "x**2 + y**2 + z**2 - 0.01"
-bounds = [[-0.11, -0.11, -0.11], [0.11, 0.11, 0.11]]
-resolution = 60
-[mass]
-density = 500.0
-cog = [0.0, 0.0, -0.02]
-gyradius = [0.06325, 0.06325, 0.06325]
-[release]
-heave = 0.01
-"""
 
 
 def test_a_body_of_revolution_given_by_triangles_heaves_in_a_wedge(tmp_path):

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 import pytest
+from bodycases import IMPLICIT_SPHERE
 from cfdcases import (
     SWAY_CHECKED,
     SWAY_TOLERANCE,
@@ -183,18 +184,6 @@ def test_a_vertical_cylinder_heaves_in_a_wedge(tmp_path):
     assert decay["equilibrium"] == pytest.approx(info.z_G_equilibrium, abs=0.01 * theory.draft)
 
 
-IMPLICIT_SPHERE = """[body]
-shape = "implicit"
-expression = "x**2 + y**2 + z**2 - 0.01"
-bounds = [[-0.11, -0.11, -0.11], [0.11, 0.11, 0.11]]
-resolution = 60
-[mass]
-density = 500.0
-cog = [0.0, 0.0, -0.02]
-gyradius = [0.06325, 0.06325, 0.06325]
-[release]
-heave = 0.01
-"""
 
 
 def test_a_body_of_revolution_given_by_triangles_heaves_in_a_wedge(tmp_path):
@@ -283,6 +272,8 @@ def test_a_light_flat_body_is_coupled_without_diverging(tmp_path):
     assert fall == pytest.approx(expected, rel=0.03)
 
 
+@pytest.mark.extended  # make test-extended: a setting's own route (36 s alone, 60–110 s in
+# make test), beyond make test's 20 minutes
 def test_a_mesh_made_at_equilibrium_starts_from_the_release(tmp_path):
     """lab_sphere's wedge made with the body at equilibrium (run.mesh_pose, floatfoam.foam.
     meshpose) and moved to the 29 mm release before the first step: G starts at the release,

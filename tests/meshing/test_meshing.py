@@ -8,6 +8,7 @@ import sys
 
 import numpy as np
 import pytest
+from bodycases import IMPLICIT_SPHERE
 
 from floatfoam.bodies.geometry import mesh_volume, open_edges
 from floatfoam.bodies.surfaces import stl_body
@@ -263,18 +264,7 @@ body_cells_3d = 6
 layers_3d = 3
 wedge = false
 """
-SPHERE_3D = """[body]
-shape = "implicit"
-expression = "x**2 + y**2 + z**2 - 0.01"
-bounds = [[-0.11, -0.11, -0.11], [0.11, 0.11, 0.11]]
-resolution = 40
-[mass]
-density = 500.0
-cog = [0.0, 0.0, -0.02]
-gyradius = [0.06325, 0.06325, 0.06325]
-[release]
-heave = 0.01
-""" + LAYERED_3D
+SPHERE_3D = IMPLICIT_SPHERE.replace("resolution = 60", "resolution = 40") + LAYERED_3D
 
 
 def _prism_nodes(path, band=False):
