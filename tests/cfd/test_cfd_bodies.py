@@ -184,8 +184,6 @@ def test_a_vertical_cylinder_heaves_in_a_wedge(tmp_path):
     assert decay["equilibrium"] == pytest.approx(info.z_G_equilibrium, abs=0.01 * theory.draft)
 
 
-
-
 def test_a_body_of_revolution_given_by_triangles_heaves_in_a_wedge(tmp_path):
     """The `sphere` case's body written as a user's implicit surface (triangles): found to be
     a body of revolution, it heaves in the wedge, not in the 3D tank (whose first crest comes

@@ -78,21 +78,23 @@ def add_meridian(body) -> list[int]:
 
 #: a meridian given by points turns at a corner where its chords turn by more than this
 CORNER_DEGREES = 30.0
-#: a chord this many times longer than a neighbouring one is a straight stretch (a wall
-#: between the last ring of a rounded keel and the deck), drawn as a line; so is a chord in
-#: line with both of its neighbours within this angle
+#: a chord this many times longer than a neighbouring one, and longer than this share of the
+#: meridian's size, is a straight stretch (a wall between the last ring of a rounded keel and
+#: the deck), drawn as a line (shorter ones, where cross-sections crowd at a rounded rim, would
+#: cut the meridian into curves too short for the body's cells)
 STRAIGHT_RATIO = 3.0
-STRAIGHT_DEGREES = 0.5
+STRAIGHT_SHARE = 0.02
 
 
 def _profile_curves(occ, profile: np.ndarray) -> list[int]:
     """The meridian through the points (r, z) of a body of revolution given by triangles
     (:func:`floatfoam.bodies.revolution.meridian`), in the half-plane y = 0: a spline through
-    each run of points between corners (a turn of the chords above :data:`CORNER_DEGREES`, a
-    chord :data:`STRAIGHT_RATIO` × longer than a neighbour, which is a line; the ends on the
-    axis), a line where a run has two. Through an STL's rings the spline is a smooth curve,
-    a little larger than their facets (a hemisphere of 12 rings: 0.4 %, which the run's volume
-    line reports)."""
+    each run of points between corners (a turn of the chords above :data:`CORNER_DEGREES`; the
+    ends on the axis), a line through each straight stretch (a chord :data:`STRAIGHT_RATIO` ×
+    longer than a neighbour and longer than :data:`STRAIGHT_SHARE` of the meridian) and where
+    a run has two points; no curve shorter than that share. Through an STL's rings the spline
+    is a smooth curve, a little larger than their facets (a hemisphere of 12 rings: 0.4 %,
+    which the run's volume line reports)."""
     size = float(np.ptp(profile, axis=0).max())
     chords = np.diff(profile, axis=0)
     keep = np.concatenate([[True], np.hypot(*chords.T) > 1e-9 * size])
@@ -103,24 +105,32 @@ def _profile_curves(occ, profile: np.ndarray) -> list[int]:
     heading = np.arctan2(chords[:, 1], chords[:, 0])
     turn = np.abs((np.diff(heading) + math.pi) % (2.0 * math.pi) - math.pi)
     breaks = set(np.flatnonzero(turn > math.radians(CORNER_DEGREES)) + 1)
-    # a straight stretch: a chord long beside a neighbour, or one in line with both of its
-    # neighbours (a wall through several rings); a line, so that no spline bows across it
-    level = np.concatenate([[0.0], turn, [0.0]]) < math.radians(STRAIGHT_DEGREES)
-    straight = level[:-1] & level[1:]
+    # a chord long beside a neighbour is a straight stretch (a wall between a rounded keel's
+    # last ring and the deck): a line, so that no spline bows across it
+    straight = set()
     for k in range(len(length)):
-        neighbours = length[max(k - 1, 0):k + 2]
-        straight[k] |= length[k] > STRAIGHT_RATIO * neighbours.min()
-    breaks |= {int(k) for k in np.flatnonzero(straight[1:] != straight[:-1]) + 1}
-    corners = sorted({0, len(profile) - 1} | breaks)
+        if length[k] > max(STRAIGHT_RATIO * length[max(k - 1, 0):k + 2].min(),
+                           STRAIGHT_SHARE * size):
+            straight |= {k, k + 1}
+    # no curve shorter than STRAIGHT_SHARE of the meridian (gmsh keeps every curve's ends as
+    # nodes: a corner a hair from another, as at a chamfered rim, would make a skewed cell);
+    # of two such corners the straight stretch's end is kept
+    arc = np.concatenate([[0.0], np.cumsum(length)])
+    last = len(profile) - 1
+    corners = [0]
+    for k in sorted((breaks | straight) - {0, last}):
+        if arc[k] - arc[corners[-1]] >= STRAIGHT_SHARE * size:
+            corners.append(k)
+        elif k in straight and corners[-1] not in straight and corners[-1] != 0:
+            corners[-1] = k
+    if len(corners) > 1 and arc[last] - arc[corners[-1]] < STRAIGHT_SHARE * size:
+        corners.pop()
+    corners.append(last)
     tags = [occ.addPoint(float(r), 0.0, float(z)) for r, z in profile]
-    curves, start = [], 0
-    for end in corners[1:]:
-        if straight[start] and end - start > 1 and straight[start:end].all():
-            curves.append(occ.addLine(tags[start], tags[end]))  # points in line: one line
-        else:
-            run = tags[start:end + 1]
-            curves.append(occ.addLine(*run) if len(run) == 2 else occ.addSpline(run))
-        start = end
+    curves = []
+    for start, end in zip(corners[:-1], corners[1:], strict=True):
+        run = tags[start:end + 1]
+        curves.append(occ.addLine(*run) if len(run) == 2 else occ.addSpline(run))
     return curves
 
 
