@@ -289,3 +289,15 @@ def test_the_tolerance_admits_a_polygon_of_24_sides():
         equal_area = math.sqrt(n * math.sin(2 * math.pi / n) / (2 * math.pi))
         return max(1 - equal_area, equal_area - math.cos(math.pi / n))
     assert spread(24) < REVOLUTION_TOLERANCE < spread(16)
+
+
+def test_a_run_in_a_wedge_of_triangles_is_not_the_3d_run_of_the_same_file(tmp_path):
+    """The run's digest takes the wedge of a body given by triangles in, so that a 3D run of the
+    same case file is another run; a shape's wedge and a heeled release (3D) have none."""
+    from floatfoam.plan.stamps import _resolved_motion
+
+    (tmp_path / "case.toml").write_text(SPHERE)
+    assert _resolved_motion(load_case(str(tmp_path)), None) == ["layered", "wedge"]
+    assert _resolved_motion(load_case("sphere"), None) == ["layered"]
+    heeled = with_overrides(load_case(str(tmp_path)), ["release.heel=2.0"])
+    assert "wedge" not in _resolved_motion(heeled, None)
