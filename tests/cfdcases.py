@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from floatfoam.analysis.decay import analyse_decay, decay_dict
-from floatfoam.analysis.extrema import first_extrema, period_from_extrema
+from floatfoam.analysis.extrema import first_extrema, parabola_peak, period_from_extrema
 from floatfoam.case import load_case
 from floatfoam.dofs import dof
 from floatfoam.foam.driver import run_case
@@ -81,14 +81,11 @@ def extrema(t, x, count: int):
 
 def refined_extrema(t, x, count: int) -> np.ndarray:
     """Times of the first ``count`` extrema of a smooth record, each the vertex of the
-    parabola through its sample and the two beside it (a step's 4 ms is 1.3 % of the sphere's
-    half period)."""
-    times = []
-    for k in first_extrema(x, count)[:count]:
-        a, b, _ = np.polyfit(t[k - 1:k + 2] - t[k], x[k - 1:k + 2], 2)
-        times.append(t[k] - b / (2.0 * a))
-    assert len(times) >= count, f"only {len(times)} extrema"
-    return np.array(times)
+    parabola through its sample and the two beside it (analysis.extrema.parabola_peak: a
+    step's 4 ms is 1.3 % of the sphere's half period)."""
+    turns = first_extrema(x, count)[:count]
+    assert len(turns) >= count, f"only {len(turns)} extrema"
+    return np.array([parabola_peak(t, x, k)[0] for k in turns])
 
 
 def early_period(t, x, count: int = 4) -> float:

@@ -69,7 +69,7 @@ def crossing_reduction(t, x, *, level: float | None = None, n_extrema: int = 6,
     extrema = []
     for a, b in zip(idx[:-1], idx[1:], strict=True):
         k = a + 1 + int(np.argmax(np.abs(y[a + 1:b + 1])))
-        extrema.append(_parabola_peak(t, y, k))
+        extrema.append(parabola_peak(t, y, k))
     if len(extrema) < n_extrema:
         raise ValueError(f"{len(extrema)} extrema between zero crossings; {n_extrema} are "
                          "needed")
@@ -83,7 +83,7 @@ def crossing_reduction(t, x, *, level: float | None = None, n_extrema: int = 6,
                              settled=settled)
 
 
-def _parabola_peak(t, y, k) -> tuple[float, float]:
+def parabola_peak(t, y, k) -> tuple[float, float]:
     """Time and value of the vertex of the parabola through samples k − 1, k, k + 1 (the
     sample itself when the vertex falls outside them, as the reference reduction does)."""
     if k == 0 or k == len(y) - 1:

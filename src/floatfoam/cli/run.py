@@ -114,7 +114,7 @@ def turning_points(t, x, *, swing: float = TURN_SWING) -> list[tuple[float, floa
     """
     import numpy as np
 
-    from floatfoam.analysis.extrema import _parabola_peak
+    from floatfoam.analysis.extrema import parabola_peak
 
     t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float)
     least = swing * float(np.ptp(x)) if x.size else 0.0
@@ -128,7 +128,7 @@ def turning_points(t, x, *, swing: float = TURN_SWING) -> list[tuple[float, floa
         elif heading * (x[k] - x[i]) > least:
             turns.append(k)
             heading, k = -heading, i
-    return [_parabola_peak(t, x, k) for k in turns]
+    return [parabola_peak(t, x, k) for k in turns]
 
 
 def turning_rows(t, x, quantity: str) -> list[str]:

@@ -163,9 +163,12 @@ def generate(mesh: RunMesh, case: Case, level: str, equilibrium, folder: Path, *
     if result.get("surface_note"):  # meshed otherwise than asked (meshing.domain3d)
         print(f"[{case.name}/{level}] note: {result['surface_note']}", file=sys.stderr)
     if mesh.kind == "wedge" and case.body.given_by_triangles:
+        from floatfoam.bodies.revolution import REVOLUTION_TOLERANCE
+
+        within = 100 * REVOLUTION_TOLERANCE
         print(f"[{case.name}/{level}] note: the body's triangles are a body of revolution about "
-              "z (every horizontal cut round within 1 %), upright and in heave: meshed as a "
-              "wedge (mesh.gmsh.wedge = false: in 3D)", file=sys.stderr)
+              f"z (every horizontal cut round within {within:g} %), upright and in heave: "
+              "meshed as a wedge (mesh.gmsh.wedge = false: in 3D)", file=sys.stderr)
     return replace(mesh, cells=cells, msh=Path(result["path"]),
                    immersed_error=result["body_patch"]["immersed_error"])
 
