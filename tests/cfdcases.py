@@ -1,4 +1,4 @@
-"""The coarse CFD runs of the tests and what they are set beside: a case's run on 2 ranks
+"""The coarse CFD runs of the tests and what they are set beside: a case's run on one rank
 (:func:`cfd`; :func:`shared_run` for a run several tests read), Cummins' model in the DoFs the
 CFD leaves free (:func:`cummins`, its radiation coefficients computed once per body), and the
 decay analysis of a record (:func:`analysed`)."""
@@ -20,11 +20,20 @@ from floatfoam.hydrostatics.theory import equilibrium, theory_summary
 from floatfoam.motion import dof_series, read_motion
 from floatfoam.potential.models import decay_series
 
+#: the ranks of make test's CFD runs: one each, two runs at once on the 2 cores
+#: (conftest.solvers_share_the_cores). The coarse 2D meshes run 1.4 × faster on 2 ranks than
+#: on one (elliptic_cylinder's make-test heave: 22.2 s against 31.9 s with the set-up), so two
+#: 1-rank runs side by side make 1.4 × the throughput of 2-rank runs in turn; the tests of the
+#: parallel route (decomposePar, mpirun, reconstructPar) ask for 2.
+RANKS = 1
+#: the ranks of make test-extended's CFD runs, which run one at a time: both cores
+ALONE = 2
 
-def cfd(name, tmp_path, overrides=()):
-    """The coarse run of case ``name`` on 2 ranks; its case, theory, motion and run info."""
+
+def cfd(name, tmp_path, overrides=(), ranks=RANKS):
+    """The coarse run of case ``name`` on ``ranks``; its case, theory, motion and run info."""
     case = load_case(name, list(overrides))
-    result = run_case(case, "coarse", 2, build_dir=tmp_path)
+    result = run_case(case, "coarse", ranks, build_dir=tmp_path)
     motion = read_motion(result.motion_csv)
     assert motion["time"][-1] == pytest.approx(result.info.end_time, abs=1e-6)
     for column in ("z", "roll", "y"):
@@ -32,17 +41,17 @@ def cfd(name, tmp_path, overrides=()):
     return case, theory_summary(case), motion, result.info
 
 
-def shared_run(name, overrides, runs):
-    """The build folder holding the coarse run of case ``name`` with ``overrides`` on 2 ranks,
+def shared_run(name, overrides, runs, ranks=2):
+    """The build folder holding the coarse run of case ``name`` with ``overrides`` on ``ranks``,
     made once for the tests that ask for the same run (``runs``: the session's shared folder,
     conftest.shared_runs): the first to ask runs it, under a lock, and the others find it
     finished. Tests read it, and write nothing into it."""
-    key = hashlib.sha256(json.dumps([name, list(overrides)]).encode()).hexdigest()[:12]
+    key = hashlib.sha256(json.dumps([name, list(overrides), ranks]).encode()).hexdigest()[:12]
     folder = runs / f"{name}-{key}"
     folder.mkdir(parents=True, exist_ok=True)
     with open(runs / f"{name}-{key}.lock", "a") as handle:
         fcntl.flock(handle, fcntl.LOCK_EX)  # released when the file closes
-        run_case(load_case(name, list(overrides)), "coarse", 2, build_dir=folder)
+        run_case(load_case(name, list(overrides)), "coarse", ranks, build_dir=folder)
     return folder
 
 

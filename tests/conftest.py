@@ -7,11 +7,12 @@ regression runs are in tests/cfd/; tests of the whole package stay here. The hel
 (pyproject.toml: pythonpath = ["tests"]).
 """
 
-import fcntl
 import os
 from pathlib import Path
 
 import pytest
+
+from floatfoam.foam.ranks import hold_cores
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 
@@ -38,24 +39,33 @@ def shared_runs(request, tmp_path_factory):
 
 
 def pytest_collection_modifyitems(config, items):
-    """Under pytest-xdist (make test: ``-n 2 --dist worksteal``), the tests that run the solver
-    come first, the Slurm ones at their head: the first worker's half of the collection holds
-    them all, one after another, and the other worker runs the rest beside them, then takes
-    tests from the tail of the first one's queue (so never a Slurm test: each worker that ran
-    one would start a Slurm of its own). Alone, pytest keeps the files' order."""
-    if hasattr(config, "workerinput"):  # an xdist worker; every worker sorts alike
-        items.sort(key=lambda item: (item.get_closest_marker("openfoam") is None,
-                                     item.path.parent.name != "cluster"))
+    """Under pytest-xdist (make test: ``-n 2 --dist worksteal``, whose first worker takes the
+    first half of the collection and the second the rest, then each takes tests from the tail
+    of the other's queue), both workers run the solver's tests beside each other: the first
+    worker's half begins with the Slurm tests (each worker that ran one would start a Slurm of
+    its own), then every other solver test, then tests without the solver; the second's
+    begins with tests without the solver (while the Slurm tests hold the cores) and ends with
+    the other solver tests. Alone, pytest keeps the files' order."""
+    if not hasattr(config, "workerinput"):  # not an xdist worker; every worker sorts alike
+        return
+    solver = [item for item in items if item.get_closest_marker("openfoam") is not None]
+    slurm = [item for item in solver if item.path.parent.name == "cluster"]
+    runs = [item for item in solver if item.path.parent.name != "cluster"]
+    rest = [item for item in items if item.get_closest_marker("openfoam") is None]
+    head = slurm + runs[0::2]
+    split = max(0, len(items) // 2 - len(head))
+    items[:] = head + rest[:split] + rest[split:] + runs[1::2]
 
 
 @pytest.fixture(autouse=True)
-def one_solver_at_a_time(request, tmp_path_factory, monkeypatch):
-    """The session's workers run one solver at a time: its ranks take the cores, and two runs
-    at once would share them (and warn that they do, foam.ranks.check_free_cores). A test that
-    runs the solver names a lock shared by the workers (beside the session's own temporary
-    folder) in FLOATFOAM_SOLVER_LOCK, which its runs hold while their solver runs (meshing,
-    potential flow and analysis go on beside the other worker's solver); the Slurm tests, whose
-    jobs take the submitter's environment, hold it from start to end instead."""
+def solvers_share_the_cores(request, tmp_path_factory, monkeypatch):
+    """The session's workers share the cores among their solvers: a test that runs the solver
+    names a lock shared by the workers (beside the session's own temporary folder) in
+    FLOATFOAM_SOLVER_LOCK, and each of its runs holds as many of the cores as it has ranks
+    while its solver runs (foam.ranks.hold_cores: two 1-rank solvers at once, a 2-rank one
+    alone; meshing, potential flow and analysis go on beside the other worker's solver); the
+    Slurm tests, whose jobs take the submitter's environment, hold every core from start to
+    end instead."""
     if request.node.get_closest_marker("openfoam") is None:
         yield
         return
@@ -65,6 +75,5 @@ def one_solver_at_a_time(request, tmp_path_factory, monkeypatch):
         yield
         return
     monkeypatch.delenv("FLOATFOAM_SOLVER_LOCK", raising=False)
-    with open(lock, "a") as handle:
-        fcntl.flock(handle, fcntl.LOCK_EX)  # released when the file closes
+    with hold_cores(lock, os.cpu_count() or 1):
         yield

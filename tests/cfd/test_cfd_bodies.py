@@ -1,5 +1,6 @@
-"""Every body of the memoir in CFD: real coarse runs on 2 MPI ranks of the gmsh route (marker
-``openfoam``), each checked against the theory and potential flow (Cummins' model).
+"""Every body of the memoir in CFD: real coarse runs of the gmsh route (marker ``openfoam``) on
+one MPI rank in make test and on 2 in make test-extended (cfdcases.RANKS, ALONE), each checked
+against the theory and potential flow (Cummins' model).
 
 Each test runs a shortened record of its case (make test stays within 20 minutes on 2 cores;
 the records are given per test); the cases' whole records run under `make <case>`, and their
@@ -13,6 +14,8 @@ import numpy as np
 import pytest
 from bodycases import IMPLICIT_SPHERE
 from cfdcases import (
+    ALONE,
+    RANKS,
     SWAY_CHECKED,
     SWAY_TOLERANCE,
     analysed,
@@ -96,9 +99,11 @@ def test_section_roll(shared_runs, name):
     damping ratio on the ellipse and hyperbola. The 5 % is the issue's bound: the fine levels
     on the distances were within U_num ≤ 0.45 % and 0.3 % of their coarse whole records
     (+0.9 %, −1.4 %, +0.4 %: the cases' READMEs)."""
-    overrides = [f"run.end_time={ROLL_RECORDS[name]}", *FAST_STEP]  # the ellipse's run is
-    # tests/foam/test_paraview.py's too: made once
-    case, theory, motion, info = cfd(name, shared_run(name, overrides, shared_runs), overrides)
+    overrides = [f"run.end_time={ROLL_RECORDS[name]}", *FAST_STEP]
+    # the ellipse's run is tests/foam/test_paraview.py's too (a parallel run): made once
+    ranks = 2 if name == "elliptic_cylinder_roll" else RANKS
+    case, theory, motion, info = cfd(name, shared_run(name, overrides, shared_runs, ranks),
+                                     overrides, ranks)
     assert motion["roll"][0] == pytest.approx(case.release["heel"], abs=1e-3)  # from equilibrium
     decay = analysed(motion, "roll")
     assert decay["n_cycles"] >= 2.0
@@ -278,8 +283,8 @@ def test_a_mesh_made_at_equilibrium_starts_from_the_release(tmp_path):
     the mesh as made is the solver's points0, and the body falls as it does from a mesh made at
     the release — over 0.2 s within 3 % of Cummins' model with nonlinear restoring (measured
     30.08 mm against 29.62 mm, +1.6 %; without added mass the model falls 40.8 mm)."""
-    case, theory, motion, info = cfd("lab_sphere", tmp_path,
-                                     ["run.end_time=0.2", 'run.mesh_pose="equilibrium"'])
+    case, theory, motion, info = cfd("lab_sphere", tmp_path,  # the ranks' meshes are checked
+                                     ["run.end_time=0.2", 'run.mesh_pose="equilibrium"'], ALONE)
     release = case.release["heave"]
     assert info.mesh_offset == pytest.approx([0.0, 0.0, release], abs=1e-9)
     assert motion["z"][0] - info.z_G_equilibrium == pytest.approx(release, abs=1e-6)
@@ -363,7 +368,8 @@ def test_triaxial_ellipsoid_roll_3d(tmp_path):
     0.1633 s, +0.04 %), where the memoir's linear model without added inertia crosses 11 %
     earlier (0.1458 s); the draft within 1 %."""
     record = 0.2  # a crossing 5 % late (0.172 s) is still seen
-    case, theory, motion, info = cfd("ellipsoid_roll", tmp_path, [f"run.end_time={record}"])
+    case, theory, motion, info = cfd("ellipsoid_roll", tmp_path, [f"run.end_time={record}"],
+                                     ALONE)
     assert info.mesh == "3d-half"
     assert motion["roll"][0] == pytest.approx(10.0, abs=1e-3)
     series = cummins(case, duration=0.5)
@@ -383,7 +389,8 @@ def test_triaxial_ellipsoid_roll_3d_first_trough_and_sway(tmp_path):
     within 1 %. On the whole record the fitted periods differ by −1.6 % (0.6596 s against
     0.6705 s); the roll-only model about G (0.7095 s) is −7.0 % away."""
     record = 0.35  # a trough 5 % late (0.340 s) is still seen
-    case, theory, motion, info = cfd("ellipsoid_roll", tmp_path, [f"run.end_time={record}"])
+    case, theory, motion, info = cfd("ellipsoid_roll", tmp_path, [f"run.end_time={record}"],
+                                     ALONE)
     assert info.mesh == "3d-half"
     assert motion["roll"][0] == pytest.approx(10.0, abs=1e-3)
     series = cummins(case)
@@ -413,7 +420,8 @@ def test_triaxial_ellipsoid_pitch_3d(tmp_path):
     misplaced on x = 0 instead of where the trim puts it, it crosses at 0.1877 s:
     tests/foam/test_cfd_setup.py checks G's place.)"""
     record = 0.18
-    case, theory, motion, info = cfd("ellipsoid_pitch", tmp_path, [f"run.end_time={record}"])
+    case, theory, motion, info = cfd("ellipsoid_pitch", tmp_path, [f"run.end_time={record}"],
+                                     ALONE)
     assert info.mesh == "3d-half"
     assert motion["pitch"][0] == pytest.approx(5.0, abs=1e-3)
     assert np.all(np.abs(motion["roll"]) < 1e-6)  # the plane y = 0 keeps it from rolling
@@ -438,7 +446,7 @@ def test_the_ellipsoid_the_print_calls_stable_turns_over_in_the_fluid(tmp_path):
     (measured 247° at 0.787 s, the model's 245° at 0.725 s)."""
     record = 0.85  # past the peak beyond 180° (0.787 s), by 10° of the swing back
     case, theory, motion, info = cfd("ellipsoid_printed_verdict", tmp_path,
-                                     [f"run.end_time={record}"])
+                                     [f"run.end_time={record}"], ALONE)
     assert info.mesh == "3d-half" and theory.dofs["roll"].verdict == "capsizes"
     run_dir = tmp_path / "ellipsoid_printed_verdict" / "coarse"
     assert len(list((run_dir / "remeshed").iterdir())) >= 6  # 5° + 6 × 30° > 180°

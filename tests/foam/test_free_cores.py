@@ -1,9 +1,13 @@
-"""Runs that share the cores (floatfoam.foam.ranks.check_free_cores): one line before the
-solver starts when its ranks and the solver ranks already running exceed the cores."""
+"""Runs that share the cores (floatfoam.foam.ranks): one line before the solver starts when its
+ranks and the solver ranks already running exceed the cores (check_free_cores), and the cores
+that runs naming one FLOATFOAM_SOLVER_LOCK share out among their solvers (hold_cores)."""
 
 import os
 import subprocess
+import threading
 import time
+
+import pytest
 
 from floatfoam.foam import ranks
 
@@ -40,3 +44,73 @@ def test_running_solver_ranks_are_counted_from_proc(tmp_path):
     finally:
         process.kill()
         process.wait()
+
+
+class Holder:
+    """hold_cores in a thread of its own: ``taken`` is set once it holds its cores, and it
+    lets them go when ``release`` is set (flock's locks belong to each open file, so threads
+    of one process contend for them as processes do)."""
+
+    def __init__(self, lock, ranks_):
+        self.taken, self.release = threading.Event(), threading.Event()
+        self.thread = threading.Thread(target=self._hold, args=(lock, ranks_), daemon=True)
+        self.thread.start()
+
+    def _hold(self, lock, ranks_):
+        with ranks.hold_cores(lock, ranks_):
+            self.taken.set()
+            self.release.wait(30)
+
+    def done(self):
+        self.release.set()
+        self.thread.join(10)
+
+
+@pytest.fixture
+def two_cores(monkeypatch):
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+
+
+def test_runs_of_one_rank_share_two_cores_and_a_third_waits(tmp_path, two_cores, capsys):
+    lock = tmp_path / "cores.lock"
+    first, second = Holder(lock, 1), Holder(lock, 1)
+    assert first.taken.wait(5) and second.taken.wait(5)  # one core each, at once
+    third = Holder(lock, 1)
+    assert not third.taken.wait(1.0)
+    first.done()
+    assert third.taken.wait(5)
+    second.done(), third.done()
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "cores.lock", "cores.lock.2", "cores.lock.queue"]
+    err = capsys.readouterr().err.splitlines()
+    assert err == [f"waiting for the cores: another run's solver holds {lock} "
+                   "(FLOATFOAM_SOLVER_LOCK)"]  # said once, by the one that waited
+
+
+def test_a_run_of_two_ranks_is_served_before_later_runs_of_one(tmp_path, two_cores):
+    """A 2-rank run waiting for both cores is not kept waiting by 1-rank runs that start
+    after it and could each take the core that comes free first."""
+    lock = tmp_path / "cores.lock"
+    first, second = Holder(lock, 1), Holder(lock, 1)
+    assert first.taken.wait(5) and second.taken.wait(5)
+    wide = Holder(lock, 2)
+    time.sleep(0.5)  # the 2-rank run waits at the queue's head
+    later = Holder(lock, 1)
+    first.done()
+    assert not wide.taken.wait(1.0) and not later.taken.wait(0.1)
+    second.done()
+    assert wide.taken.wait(5) and not later.taken.wait(1.0)
+    wide.done()
+    assert later.taken.wait(5)
+    later.done()
+
+
+def test_more_ranks_than_cores_hold_every_core(tmp_path, two_cores):
+    lock = tmp_path / "cores.lock"
+    wide = Holder(lock, 3)
+    assert wide.taken.wait(5)
+    one = Holder(lock, 1)
+    assert not one.taken.wait(1.0)
+    wide.done()
+    assert one.taken.wait(5)
+    one.done()

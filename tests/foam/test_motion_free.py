@@ -126,8 +126,8 @@ def test_cummins_solves_the_dofs_the_case_frees():
 
 @pytest.mark.openfoam
 def test_the_flume_section_rolls_with_its_sway_held(tmp_path):
-    """flume_section_roll_sway_held (the rig's sway clamped: heave and roll free), 3.0 s on 2
-    ranks at make test's step: G never leaves its vertical line, and the roll matches Cummins'
+    """flume_section_roll_sway_held (the rig's sway clamped: heave and roll free), 3.0 s on one
+    rank at make test's step: G never leaves its vertical line, and the roll matches Cummins'
     model in heave and roll over the same 3.0 s. Measured on this record: T_d 1.2693 s against
     1.2740 s (−0.36 %), ζ 0.0440 against 0.0466 (−5.6 %); the free body's model (sway free:
     flume_section_roll) gives 1.2606 s and ζ 0.013, which the ζ check tells apart.

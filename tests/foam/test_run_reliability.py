@@ -12,7 +12,6 @@ the domain anew (elliptic_cylinder_capsize).
 from __future__ import annotations
 
 import dataclasses
-import fcntl
 import os
 import shutil
 import signal
@@ -31,6 +30,7 @@ from floatfoam.case import load_case
 from floatfoam.cli import main
 from floatfoam.foam import domain, render, runner, timedirs
 from floatfoam.foam.motionlog import rebuild_motion
+from floatfoam.foam.ranks import hold_cores
 from floatfoam.layout import is_finished
 from floatfoam.motion import read_motion
 from floatfoam.plan.level import level_factor
@@ -251,13 +251,12 @@ def test_sigkilled_driver_takes_its_solver(tmp_path, ranks):
 
 
 def test_runs_naming_one_solver_lock_take_turns(tmp_path, monkeypatch):
-    """FLOATFOAM_SOLVER_LOCK held by another: the run prepares its folder, says in one line that
-    it waits, starts no solver until the lock is free, then runs to its end."""
+    """FLOATFOAM_SOLVER_LOCK's cores all held by another: the run prepares its folder, says in
+    one line that it waits, starts no solver until a core is free, then runs to its end."""
     lock = tmp_path / "turns.lock"  # the test's own: held here, not make test's shared one
     monkeypatch.setenv("FLOATFOAM_SOLVER_LOCK", str(lock))
     run_dir = tmp_path / CASE / "coarse"
-    with open(lock, "a") as held:
-        fcntl.flock(held, fcntl.LOCK_EX)
+    with hold_cores(lock, os.cpu_count() or 1):
         driver = start(tmp_path, end_time=0.02, interval=0.02, small=True)
         wait_until(lambda: (run_dir / "log.setAlphaField").is_file(), driver)
         time.sleep(3.0)  # the driver reached its turn within a second (its last step before)

@@ -1,7 +1,7 @@
 """How many MPI ranks a run takes: the default when --np is not given, the check of a given
---np and --hostfile, the cores other runs already use, and the turns runs take at the cores
-(:envvar:`FLOATFOAM_SOLVER_LOCK`). Light on purpose: every command's parser asks for the
-default."""
+--np and --hostfile, the cores other runs already use, and the cores runs share out among
+their solvers (:envvar:`FLOATFOAM_SOLVER_LOCK`). Light on purpose: every command's parser asks
+for the default."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ import contextlib
 import fcntl
 import os
 import sys
+import time
 from pathlib import Path
 
 from floatfoam.errors import InputError
@@ -86,9 +87,13 @@ def check_free_cores(np_: int, hostfile: Path | None, *, label: str = "",
     return True
 
 
-#: the environment variable naming a lock file: runs that name the same one run their solvers
-#: one at a time (each waits for the others' to end), instead of sharing the cores
+#: the environment variable naming a lock file: runs that name the same one share this machine's
+#: cores among their solvers (each takes as many as it has ranks, and waits while too few are
+#: free), instead of oversubscribing them
 SOLVER_LOCK = "FLOATFOAM_SOLVER_LOCK"
+
+#: how often a run waiting for cores looks again, seconds
+_POLL = 0.2
 
 
 def solver_lock() -> Path | None:
@@ -104,23 +109,74 @@ def solver_lock() -> Path | None:
     return path
 
 
+def core_files(path: Path, cores: int | None = None) -> list[Path]:
+    """The lock files of a :data:`SOLVER_LOCK` ``path``, one per core of this machine: the
+    file itself for the first, ``FILE.2`` … ``FILE.<cores>`` beside it for the others."""
+    cores = cores or os.cpu_count() or 1
+    return [path] + [path.with_name(f"{path.name}.{k}") for k in range(2, cores + 1)]
+
+
 @contextlib.contextmanager
-def solver_turn(label: str = ""):
-    """Hold the :data:`SOLVER_LOCK` file while the solver runs: a run that finds it held says
-    so in one line and waits for it (an interrupt stops the wait). Yields the held file's
-    descriptors (for the solver's watchdog, which holds the turn until a killed driver's solver
-    is gone: :mod:`floatfoam.foam.processes`); none without the variable, when runs do not
-    wait for each other."""
+def hold_cores(path: Path, ranks: int, label: str = ""):
+    """Hold ``ranks`` of the core files of ``path`` (all of them for as many ranks as cores or
+    more): a run that finds too few free says so in one line and waits (an interrupt stops
+    the wait). The run that waits longest is served first: it holds ``FILE.queue`` while it
+    gathers its cores, so a run of two ranks is not kept waiting by runs of one that follow
+    each other. Yields the held files' descriptors."""
+    slots = core_files(path)
+    need = min(max(1, ranks), len(slots))
+    where = f"[{label}] " if label else ""
+    said = False
+
+    def wait_message():
+        nonlocal said
+        if not said:
+            print(f"{where}waiting for the cores: another run's solver holds {path} "
+                  f"({SOLVER_LOCK})", file=sys.stderr, flush=True)
+            said = True
+
+    held = {}  # core index: its open, locked file
+    try:
+        with open(path.with_name(f"{path.name}.queue"), "a") as queue:
+            start = time.monotonic()
+            while True:
+                try:
+                    fcntl.flock(queue, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                    break
+                except BlockingIOError:
+                    if time.monotonic() - start > 1.0:  # not another run taking its cores
+                        wait_message()
+                    time.sleep(_POLL)
+            while True:
+                for k, slot in enumerate(slots):
+                    if len(held) == need or k in held:
+                        continue
+                    handle = open(slot, "a")
+                    try:
+                        fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                    except BlockingIOError:
+                        handle.close()
+                        continue
+                    held[k] = handle
+                if len(held) == need:
+                    break
+                wait_message()
+                time.sleep(_POLL)
+        yield tuple(handle.fileno() for handle in held.values())
+    finally:
+        for handle in held.values():  # each lock goes with its file's closing
+            handle.close()
+
+
+@contextlib.contextmanager
+def solver_turn(label: str = "", ranks: int = 1):
+    """Hold ``ranks`` cores of the :data:`SOLVER_LOCK` file's while the solver runs
+    (:func:`hold_cores`). Yields the held files' descriptors (for the solver's watchdog, which
+    holds the cores until a killed driver's solver is gone: :mod:`floatfoam.foam.processes`);
+    none without the variable, when runs do not wait for each other."""
     path = solver_lock()
     if path is None:
         yield ()
         return
-    with open(path, "a") as handle:  # the lock goes with the file's closing
-        try:
-            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            where = f"[{label}] " if label else ""
-            print(f"{where}waiting for the cores: another run's solver holds {path} "
-                  f"({SOLVER_LOCK})", file=sys.stderr, flush=True)
-            fcntl.flock(handle, fcntl.LOCK_EX)
-        yield (handle.fileno(),)
+    with hold_cores(path, ranks, label) as fds:
+        yield fds
