@@ -38,7 +38,7 @@ $(CFD_CASES): setup
 	$(FF) run $@ --level $(LEVEL) $(NPARGS) $(SETARGS)
 
 test: setup  ## all tests but the extended ones (make test-extended): unit tests and the coarse OpenFOAM regression runs
-	$(PY) -m pytest -q -m "not extended" -n 2 --dist worksteal --durations=15  # the solver's tests in turn, the rest beside them (tests/conftest.py); ≤ 20 min on 2 cores, aim 15
+	$(PY) -m pytest -q -m "not extended" -n 2 --dist worksteal --durations=15  # two workers, each running solver tests among the rest, the cores shared out (tests/conftest.py); ≤ 20 min on 2 cores, aim 15
 
 test-extended: setup  ## the CFD checks beyond make test's 20 minutes (the 3D pitch decay ~1 min, the ellipsoid turning over ~11 min, a mesh made at rest ~1 min)
 	$(PY) -m pytest -q -m extended --durations=5

@@ -114,3 +114,24 @@ def test_more_ranks_than_cores_hold_every_core(tmp_path, two_cores):
     wide.done()
     assert one.taken.wait(5)
     one.done()
+
+
+def test_computations_beside_running_solvers_take_the_free_cores(monkeypatch):
+    """A child computation (potential.bounded.run_bounded: Capytaine, BLAS) started while solver
+    ranks run takes the cores they leave free, at least one; alone, or with the threads set
+    by the user, the environment is left as it is."""
+    from floatfoam import cores
+    from floatfoam.potential.bounded import run_bounded
+
+    for name in cores.THREAD_VARIABLES:
+        monkeypatch.delenv(name, raising=False)
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    assert cores.threads_beside_solvers(busy=0) == {}
+    assert cores.threads_beside_solvers(busy=1) == dict.fromkeys(cores.THREAD_VARIABLES, "1")
+    assert cores.threads_beside_solvers(busy=4)["OMP_NUM_THREADS"] == "1"
+    monkeypatch.setattr(cores, "running_solver_ranks", lambda name=cores.SOLVER_NAME: 1)
+    seen = run_bounded(os.getenv, "OMP_NUM_THREADS", limit=60, label="t", advice="-")
+    assert seen == "1" and "OMP_NUM_THREADS" not in os.environ  # the child's alone
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "2")  # the user's choice
+    assert cores.threads_beside_solvers(busy=1) == {}
+    assert run_bounded(os.getenv, "OMP_NUM_THREADS", limit=60, label="t", advice="-") is None

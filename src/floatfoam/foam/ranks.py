@@ -12,6 +12,7 @@ import sys
 import time
 from pathlib import Path
 
+from floatfoam.cores import running_solver_ranks
 from floatfoam.errors import InputError
 
 #: the most ranks a run takes by default: every measurement in this project (the README's and
@@ -50,20 +51,6 @@ def check_ranks(np_: int, hostfile: Path | None) -> None:
         print(f"warning: --np {np_} is more than the {cores} cores of this machine: the ranks "
               f"will share them and run far slower than --np {cores}; give --hostfile to use "
               "other machines", file=sys.stderr)
-
-
-SOLVER_NAME = "interFoam"  # the process name of every rank of a run (floatfoam's build's too)
-
-
-def running_solver_ranks(name: str = SOLVER_NAME) -> int:
-    """The solver processes running on this machine now (other runs' ranks), from /proc."""
-    count = 0
-    for comm in Path("/proc").glob("[0-9]*/comm"):
-        try:
-            count += comm.read_text().strip() == name
-        except OSError:  # the process ended meanwhile
-            continue
-    return count
 
 
 def check_free_cores(np_: int, hostfile: Path | None, *, label: str = "",

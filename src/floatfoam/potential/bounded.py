@@ -6,7 +6,9 @@ a child process (a fresh interpreter: ``func`` and its arguments must pickle) an
 with a time limit: a child that runs past it, crashes or is
 interrupted is stopped, and the caller gets one :class:`~floatfoam.errors.ComputationError`
 line (or the interrupt) instead of a hang, a core dump or a traceback. The child dies
-with its parent (parent-death signal), so it cannot outlive the command either.
+with its parent (parent-death signal), so it cannot outlive the command either. Started while
+other runs' solver ranks run, the child takes the cores they leave free for its OpenMP and BLAS
+threads (:func:`floatfoam.cores.threads_beside_solvers`), unless the environment sets them.
 
 Long work says how far it is on stderr: :class:`Progress` (a line per counted step, at most
 every few seconds) and :class:`Heartbeat` (a line every 10 s from a thread, also for work that
@@ -17,12 +19,14 @@ from __future__ import annotations
 
 import contextlib
 import multiprocessing
+import os
 import signal
 import sys
 import threading
 import time
 import traceback
 
+from floatfoam.cores import threads_beside_solvers
 from floatfoam.errors import ComputationError, InputError
 from floatfoam.interrupts import die_with_parent
 
@@ -50,7 +54,8 @@ def run_bounded(func, *args, limit: float, label: str, advice: str, **kwargs):
     context = multiprocessing.get_context("spawn")
     parent, child = context.Pipe(duplex=False)
     process = context.Process(target=_child, args=(child, func, args, kwargs), daemon=True)
-    process.start()
+    with _environment(threads_beside_solvers()):  # the child takes the environment at start
+        process.start()
     child.close()
     start = time.monotonic()
     try:
@@ -79,6 +84,21 @@ def run_bounded(func, *args, limit: float, label: str, advice: str, **kwargs):
         return message[1]
     kind, text = message[1], message[2]
     raise (InputError if kind == "InputError" else ComputationError)(text)
+
+
+@contextlib.contextmanager
+def _environment(values: dict[str, str]):
+    """``values`` set in this process's environment for the block's length."""
+    before = {name: os.environ.get(name) for name in values}
+    os.environ.update(values)
+    try:
+        yield
+    finally:
+        for name, value in before.items():
+            if value is None:
+                os.environ.pop(name, None)
+            else:
+                os.environ[name] = value
 
 
 def _stop_resource_tracker() -> None:
