@@ -41,7 +41,7 @@ def cfd(name, tmp_path, overrides=(), ranks=RANKS):
     return case, theory_summary(case), motion, result.info
 
 
-def shared_run(name, overrides, runs, ranks=2):
+def shared_run(name, overrides, runs, ranks):
     """The build folder holding the coarse run of case ``name`` with ``overrides`` on ``ranks``,
     made once for the tests that ask for the same run (``runs``: the session's shared folder,
     conftest.shared_runs): the first to ask runs it, under a lock, and the others find it

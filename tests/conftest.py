@@ -15,11 +15,12 @@ import pytest
 from floatfoam.foam.ranks import hold_cores
 
 os.environ.setdefault("MPLBACKEND", "Agg")
-# Two workers share the 2 cores with the solvers' ranks: every computation takes one thread
-# (Capytaine's OpenMP and OpenBLAS spin on a core they wait for; floatfoam.cores.
-# threads_beside_solvers has the measurement), set before numpy is loaded
-for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_name, "1")
+if "PYTEST_XDIST_WORKER" in os.environ:
+    # Two workers share the 2 cores with the solvers' ranks: every computation takes one
+    # thread (Capytaine's OpenMP and OpenBLAS spin on a core they wait for; floatfoam.cores.
+    # threads_beside_solvers has the measurement), set before numpy is loaded
+    for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(_name, "1")
 
 ROOT = Path(__file__).resolve().parents[1]  # the project
 DATA = ROOT / "tests" / "data"  # committed real outputs (tests/data/README.md)
@@ -43,6 +44,7 @@ def shared_runs(request, tmp_path_factory):
     return (base.parent if hasattr(request.config, "workerinput") else base) / "shared-runs"
 
 
+@pytest.hookimpl(trylast=True)  # after `-m` has deselected
 def pytest_collection_modifyitems(config, items):
     """Under pytest-xdist (make test: ``-n 2 --dist worksteal``, whose first worker takes the
     first half of the collection and the second the rest, then each takes tests from the tail
@@ -57,9 +59,7 @@ def pytest_collection_modifyitems(config, items):
     slurm = [item for item in solver if item.path.parent.name == "cluster"]
     runs = [item for item in solver if item.path.parent.name != "cluster"]
     rest = [item for item in items if item.get_closest_marker("openfoam") is None]
-    head = slurm + runs[0::2]
-    split = max(0, len(items) // 2 - len(head))
-    items[:] = head + rest[:split] + rest[split:] + runs[1::2]
+    items[:] = slurm + runs[0::2] + rest + runs[1::2]  # the halves split within ``rest``
 
 
 @pytest.fixture(autouse=True)

@@ -47,7 +47,7 @@ HEAVE_RECORD = ["run.end_time=1.6", *FAST_STEP]
 
 def heave_record(shared_runs):
     """The coarse run of cylinder_heave on :data:`HEAVE_RECORD`, 2 ranks (made once)."""
-    folder = shared_run("cylinder_heave", HEAVE_RECORD, shared_runs)
+    folder = shared_run("cylinder_heave", HEAVE_RECORD, shared_runs, 2)
     return run_case(load_case("cylinder_heave", HEAVE_RECORD), "coarse", 2, build_dir=folder)
 
 

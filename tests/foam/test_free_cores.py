@@ -135,3 +135,17 @@ def test_computations_beside_running_solvers_take_the_free_cores(monkeypatch):
     monkeypatch.setenv("OPENBLAS_NUM_THREADS", "2")  # the user's choice
     assert cores.threads_beside_solvers(busy=1) == {}
     assert run_bounded(os.getenv, "OMP_NUM_THREADS", limit=60, label="t", advice="-") is None
+
+
+def test_a_run_holds_its_ranks_cores_and_with_a_hostfile_every_one(tmp_path, two_cores,
+                                                                   monkeypatch):
+    """solver_turn: as many cores as the run's ranks; a run with a hostfile, whose ranks may
+    run here too, all of them; none without FLOATFOAM_SOLVER_LOCK."""
+    monkeypatch.delenv("FLOATFOAM_SOLVER_LOCK", raising=False)
+    with ranks.solver_turn("a", 1) as fds:
+        assert fds == ()
+    monkeypatch.setenv("FLOATFOAM_SOLVER_LOCK", str(tmp_path / "cores.lock"))
+    with ranks.solver_turn("a", 1) as fds:
+        assert len(fds) == 1
+    with ranks.solver_turn("a", 1, tmp_path / "hosts") as fds:
+        assert len(fds) == 2

@@ -87,7 +87,7 @@ def test_a_parallel_roll_run_opens_in_paraview_and_analyses_as_roll(shared_runs,
     from floatfoam.layout import time_folders
 
     overrides = ["run.end_time=2.0", *FAST_STEP]  # test_section_roll's run: made once
-    run = shared_run("elliptic_cylinder_roll", overrides, shared_runs) / \
+    run = shared_run("elliptic_cylinder_roll", overrides, shared_runs, 2) / \
         "elliptic_cylinder_roll" / "coarse"
     foam = run / "elliptic_cylinder_roll.foam"
     assert foam.is_file() and foam.read_bytes() == b""

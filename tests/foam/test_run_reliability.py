@@ -250,7 +250,7 @@ def test_sigkilled_driver_takes_its_solver(tmp_path, ranks):
     assert not any(p.exists() for p in left)  # ... the next command removes it
 
 
-def test_runs_naming_one_solver_lock_take_turns(tmp_path, monkeypatch):
+def test_a_run_waits_while_the_solver_lock_holds_every_core(tmp_path, monkeypatch):
     """FLOATFOAM_SOLVER_LOCK's cores all held by another: the run prepares its folder, says in
     one line that it waits, starts no solver until a core is free, then runs to its end."""
     lock = tmp_path / "turns.lock"  # the test's own: held here, not make test's shared one
@@ -259,7 +259,7 @@ def test_runs_naming_one_solver_lock_take_turns(tmp_path, monkeypatch):
     with hold_cores(lock, os.cpu_count() or 1):
         driver = start(tmp_path, end_time=0.02, interval=0.02, small=True)
         wait_until(lambda: (run_dir / "log.setAlphaField").is_file(), driver)
-        time.sleep(3.0)  # the driver reached its turn within a second (its last step before)
+        time.sleep(3.0)  # the driver reached the lock within a second (its last step before)
         assert driver.poll() is None and not (run_dir / "log.interFoam").exists()
     _, err = driver.communicate(timeout=120)
     assert driver.returncode == 0, err

@@ -231,7 +231,7 @@ def _locked_run(plan: RunPlan, mesh, force: bool, lock) -> RunResult:
         print(f"[{label}] the solver had reached end_time ({reached:g} s); the motion "
               "series is rebuilt from its log", file=sys.stderr)
     else:
-        with solver_turn(label, np_) as turn:  # FLOATFOAM_SOLVER_LOCK: cores shared out
+        with solver_turn(label, np_, hostfile) as turn:  # FLOATFOAM_SOLVER_LOCK's cores
             check_free_cores(np_, hostfile, label=label)
             while True:
                 if remesh.pending(run_dir):  # the solver stopped for it: a mesh anew

@@ -92,7 +92,7 @@ def solver_lock() -> Path | None:
     path = Path(value)
     if path.is_dir() or not path.parent.is_dir():
         raise InputError(f"{SOLVER_LOCK}={value}: valid is a file in an existing folder (the "
-                         "lock that runs naming it take turns on)")
+                         "lock by which runs naming it share the cores)")
     return path
 
 
@@ -107,9 +107,9 @@ def core_files(path: Path, cores: int | None = None) -> list[Path]:
 def hold_cores(path: Path, ranks: int, label: str = ""):
     """Hold ``ranks`` of the core files of ``path`` (all of them for as many ranks as cores or
     more): a run that finds too few free says so in one line and waits (an interrupt stops
-    the wait). The run that waits longest is served first: it holds ``FILE.queue`` while it
-    gathers its cores, so a run of two ranks is not kept waiting by runs of one that follow
-    each other. Yields the held files' descriptors."""
+    the wait). One run at a time gathers its cores, holding ``FILE.queue`` until it has them
+    all, so a run of two ranks is not kept waiting by runs of one that follow each other.
+    Yields the held files' descriptors."""
     slots = core_files(path)
     need = min(max(1, ranks), len(slots))
     where = f"[{label}] " if label else ""
@@ -141,10 +141,12 @@ def hold_cores(path: Path, ranks: int, label: str = ""):
                     handle = open(slot, "a")
                     try:
                         fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-                    except BlockingIOError:
+                        held[k] = handle
+                    except BaseException as err:  # another run's core, or an interrupt
                         handle.close()
-                        continue
-                    held[k] = handle
+                        if isinstance(err, BlockingIOError):
+                            continue
+                        raise
                 if len(held) == need:
                     break
                 wait_message()
@@ -156,14 +158,15 @@ def hold_cores(path: Path, ranks: int, label: str = ""):
 
 
 @contextlib.contextmanager
-def solver_turn(label: str = "", ranks: int = 1):
+def solver_turn(label: str = "", ranks: int = 1, hostfile: Path | None = None):
     """Hold ``ranks`` cores of the :data:`SOLVER_LOCK` file's while the solver runs
-    (:func:`hold_cores`). Yields the held files' descriptors (for the solver's watchdog, which
+    (:func:`hold_cores`; all of them for a run with a ``hostfile``, whose ranks may run here
+    too). Yields the held files' descriptors (for the solver's watchdog, which
     holds the cores until a killed driver's solver is gone: :mod:`floatfoam.foam.processes`);
     none without the variable, when runs do not wait for each other."""
     path = solver_lock()
     if path is None:
         yield ()
         return
-    with hold_cores(path, ranks, label) as fds:
+    with hold_cores(path, ranks if hostfile is None else len(core_files(path)), label) as fds:
         yield fds
