@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+from floatfoam.cores import THREAD_VARIABLES
 from floatfoam.foam.ranks import hold_cores
 
 os.environ.setdefault("MPLBACKEND", "Agg")
@@ -19,7 +20,7 @@ if "PYTEST_XDIST_WORKER" in os.environ:
     # Two workers share the 2 cores with the solvers' ranks: every computation takes one
     # thread (Capytaine's OpenMP and OpenBLAS spin on a core they wait for; floatfoam.cores.
     # threads_beside_solvers has the measurement), set before numpy is loaded
-    for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    for _name in THREAD_VARIABLES:
         os.environ.setdefault(_name, "1")
 
 ROOT = Path(__file__).resolve().parents[1]  # the project

@@ -96,10 +96,10 @@ def solver_lock() -> Path | None:
     return path
 
 
-def core_files(path: Path, cores: int | None = None) -> list[Path]:
+def core_files(path: Path) -> list[Path]:
     """The lock files of a :data:`SOLVER_LOCK` ``path``, one per core of this machine: the
     file itself for the first, ``FILE.2`` … ``FILE.<cores>`` beside it for the others."""
-    cores = cores or os.cpu_count() or 1
+    cores = os.cpu_count() or 1
     return [path] + [path.with_name(f"{path.name}.{k}") for k in range(2, cores + 1)]
 
 
@@ -168,5 +168,5 @@ def solver_turn(label: str = "", ranks: int = 1, hostfile: Path | None = None):
     if path is None:
         yield ()
         return
-    with hold_cores(path, ranks if hostfile is None else len(core_files(path)), label) as fds:
+    with hold_cores(path, ranks if hostfile is None else os.cpu_count() or 1, label) as fds:
         yield fds
