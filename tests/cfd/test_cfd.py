@@ -13,7 +13,6 @@ import numpy as np
 import pytest
 from cfdcases import shared_run
 from procutil import SMALL_OGRID_SETTINGS, locked, processes_in
-from steps import FAST_STEP
 
 from floatfoam.analysis.decay import analyse_decay, decay_dict
 from floatfoam.analysis.stillwater import currents, summary
@@ -40,9 +39,9 @@ def swings(t, z, z_eq):
             if b - a > 2]
 
 
-# make test's heave record of the O-grid cylinder: 2.6 periods at make test's step, read by two
+# make test's heave record of the O-grid cylinder: 2.6 periods at the default step, read by two
 # tests (the run made once: cfdcases.shared_run)
-HEAVE_RECORD = ["run.end_time=1.6", *FAST_STEP]
+HEAVE_RECORD = ["run.end_time=1.6"]
 
 
 def heave_record(shared_runs):
@@ -53,8 +52,8 @@ def heave_record(shared_runs):
 
 def test_cylinder_heave_coarse_decays_with_added_mass(shared_runs):
     """2.6 heave periods (1.6 s) of the coarse run, on 2 MPI ranks (decomposePar + mpirun), at
-    make test's step (tests/steps.py: 193 steps, not the case's 343), its mesh moved by the
-    layered motion of a heave release (src/solver/)."""
+    the default step (Courant 1 in the bulk, 0.5 at the interface, ≤ 10 ms: 193 steps), its
+    mesh moved by the layered motion of a heave release (src/solver/)."""
     case = load_case("cylinder_heave", HEAVE_RECORD)
     theory = theory_summary(case).to_dict()
     result = heave_record(shared_runs)
@@ -91,9 +90,9 @@ def test_cylinder_heave_coarse_decays_with_added_mass(shared_runs):
 
 def test_heave_period_moves_little_with_the_step(shared_runs, tmp_path):
     """The heave's fitted period carries a first-order step error no larger than the time-step
-    study's: cylinder_heave's coarse 1.6 s at make test's step (tests/steps.py: Courant 1, 0.5
-    at the interface, ≤ 10 ms; the run of test_cylinder_heave_coarse_decays_with_added_mass)
-    and at half of it (run_case's time_step_divisor 2: about the case's own count of steps),
+    study's: cylinder_heave's coarse 1.6 s at the default step (Courant 1, 0.5 at the
+    interface, ≤ 10 ms; the run of test_cylinder_heave_coarse_decays_with_added_mass)
+    and at half of it (run_case's time_step_divisor 2),
     2 ranks, at the defaults (the interface on Crank–Nicolson, the body's faces at the step's
     end, the correctors compensated). And the interface's flux keeps the geometric
     conservation law on the moving mesh (scripts/build_solver.sh): no cell fills beyond

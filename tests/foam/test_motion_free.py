@@ -8,7 +8,6 @@ as Sundsdal et al.'s rig held it, and checks it against Cummins' model in the sa
 
 import numpy as np
 import pytest
-from steps import FAST_STEP
 
 from floatfoam import fields, settings
 from floatfoam.case import load_case
@@ -127,21 +126,20 @@ def test_cummins_solves_the_dofs_the_case_frees():
 @pytest.mark.openfoam
 def test_the_flume_section_rolls_with_its_sway_held(tmp_path):
     """flume_section_roll_sway_held (the rig's sway clamped: heave and roll free), 3.0 s on one
-    rank at make test's step: G never leaves its vertical line, and the roll matches Cummins'
+    rank at the default step: G never leaves its vertical line, and the roll matches Cummins'
     model in heave and roll over the same 3.0 s. Measured on this record: T_d 1.2693 s against
     1.2740 s (−0.36 %), ζ 0.0440 against 0.0466 (−5.6 %); the free body's model (sway free:
     flume_section_roll) gives 1.2606 s and ζ 0.013, which the ζ check tells apart.
     Tolerances: 1 % on T_d, as the roll sections' coarse records against Cummins' (within
-    1.8 %, test_cfd_bodies.test_section_roll); 20 %
-    on ζ, which make test's step moves by up to 13 % (tests/steps.py) and the mesh motion by
-    1.3 % (the diffusivity 1/d: flume_section_roll's README), against 72 % between held and
-    free."""
+    1.8 %, test_cfd_bodies.test_section_roll); 20 % on ζ, which halving the step's limits
+    moves by up to 3 % (docs/studies/time-step-limits.md) and the mesh motion by 1.3 % (the
+    diffusivity 1/d: flume_section_roll's README), against 72 % between held and free."""
     from cfdcases import analysed, cfd, cummins
 
     from floatfoam.analysis.decay import analyse_decay
 
     case, _, motion, _ = cfd("flume_section_roll_sway_held", tmp_path,
-                             ["run.end_time=3.0", *FAST_STEP])
+                             ["run.end_time=3.0"])
     assert np.ptp(motion["y"]) == 0.0 and np.ptp(motion["x"]) == 0.0  # held by the solver
     decay = analysed(motion, "roll")
     model = cummins(case, duration=3.0)

@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 from cfdcases import shared_run
 from fakes import fake_run
-from steps import FAST_STEP
 
 from floatfoam import layout
 from floatfoam.cli import main
@@ -86,7 +85,7 @@ def test_a_parallel_roll_run_opens_in_paraview_and_analyses_as_roll(shared_runs,
 
     from floatfoam.layout import time_folders
 
-    overrides = ["run.end_time=2.0", *FAST_STEP]  # test_section_roll's run: made once
+    overrides = ["run.end_time=2.0"]  # test_section_roll's run: made once
     run = shared_run("elliptic_cylinder_roll", overrides, shared_runs, 2) / \
         "elliptic_cylinder_roll" / "coarse"
     foam = run / "elliptic_cylinder_roll.foam"

@@ -250,10 +250,11 @@ def _locked_run(plan: RunPlan, mesh, force: bool, lock) -> RunResult:
 
 
 # of the level's largest time step: 100 steps in a row below it stop the run (the mesh giving
-# out, or the flow blowing up). Measured: collapses fall to 3–10 µs of a 5 ms step (0.06–0.2 %:
-# runner.Limits); a body turning over legitimately to 55 µs (1.1 %: ellipsoid_printed_verdict,
-# the air over it at 9 m/s), which 1 % stopped within 10 %. Half a percent leaves 2 × either way.
-STALL_FRACTION = 0.005
+# out, or the flow blowing up). Measured: collapses fall to 3–10 µs (runner.Limits); a body
+# turning over legitimately to 55 µs (ellipsoid_printed_verdict, the air over it at 9 m/s),
+# which a floor of 50 µs stopped within 10 %. At the default 10 ms the floor is 25 µs: 2 ×
+# either way.
+STALL_FRACTION = 0.0025
 
 
 def set_aside(case: Case, run_dir: Path, label: str) -> None:

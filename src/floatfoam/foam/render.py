@@ -153,8 +153,7 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
     control["endTime"] = end_time
     control["writeInterval"] = write_interval(end_time, min(run.write_interval, end_time))
     control["maxCo"] = run.max_courant
-    control["maxAlphaCo"] = run.max_courant if run.max_alpha_courant is None \
-        else run.max_alpha_courant
+    control["maxAlphaCo"] = min(run.max_alpha_courant, run.max_courant)
     control["maxDeltaT"] = run.max_delta_t / mesh.factor
     pimple = FoamFile(run_dir / "system" / "fvSolution")["PIMPLE"]
     pimple["nOuterCorrectors"] = 1 if run.static_body else run.outer_correctors

@@ -100,4 +100,4 @@ def smaller_steps(case: Case, divisor: int) -> Case:
     limits = {"max_delta_t": run.max_delta_t, "max_courant": run.max_courant,
               "max_alpha_courant": run.max_alpha_courant}
     return with_overrides(case, [f"run.{key}={value / divisor!r}"
-                                 for key, value in limits.items() if value is not None])
+                                 for key, value in limits.items()])
