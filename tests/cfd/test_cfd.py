@@ -245,4 +245,7 @@ def test_interrupted_run_resumes(tmp_path):
     assert float(first.split("=")[1]) > 0.19  # restarted from the written 0.2 s, not from 0
     t = read_motion(result.motion_csv)["time"]
     assert t[0] < 1e-3 and t[-1] == pytest.approx(0.8, abs=1e-6)
-    assert np.all(np.diff(t) > 0) and np.diff(t).max() < 0.01  # no overlap, no gap
+    # no overlap, no gap: a lost row leaves two steps; a step landing on a written time is
+    # stretched by up to a tenth of the largest (measured 10.3 ms at 10 ms)
+    largest = load_case("cylinder_heave", RESUMED_RUN).settings.run.max_delta_t
+    assert np.all(np.diff(t) > 0) and np.diff(t).max() < 1.5 * largest

@@ -411,8 +411,13 @@ def test_a_run_stopped_while_it_remeshes_resumes(tmp_path):
     motion = read_motion(run_dir / "motion.csv")
     t, roll = motion["time"], motion["roll"]
     assert t[-1] == pytest.approx(0.7, abs=1e-6)
-    assert np.all(np.diff(t) > 0) and np.diff(t).max() < 0.01  # no overlap, no gap
-    assert np.abs(np.diff(roll)).max() < 0.5  # no jump at a remeshing (deg per step)
+    # no overlap, no gap: a lost row leaves two steps; a step landing on a written time is
+    # stretched by up to a tenth of the largest (measured 10.2 ms at 10 ms)
+    largest = load_case("elliptic_cylinder_capsize").settings.run.max_delta_t
+    assert np.all(np.diff(t) > 0) and np.diff(t).max() < 1.5 * largest
+    # no jump at a remeshing: the roll's rate over each step below 100°/s (the turn reaches
+    # 77°/s by 0.7 s, measured; 0.77° in its last 10 ms step)
+    assert np.abs(np.diff(roll) / np.diff(t)).max() < 100.0
     assert roll[-1] > 15.0  # turned on (measured 18.6°)
 
 
