@@ -91,7 +91,7 @@ def extrema(t, x, count: int):
 def refined_extrema(t, x, count: int) -> np.ndarray:
     """Times of the first ``count`` extrema of a smooth record, each the vertex of the
     parabola through its sample and the two beside it (analysis.extrema.parabola_peak: a
-    step's 4 ms is 1.3 % of the sphere's half period)."""
+    step of up to 10 ms is up to 3 % of the sphere's half period)."""
     turns = first_extrema(x, count)[:count]
     assert len(turns) >= count, f"only {len(turns)} extrema"
     return np.array([parabola_peak(t, x, k)[0] for k in turns])

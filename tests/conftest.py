@@ -3,7 +3,7 @@ of the test's own.
 
 The tests mirror the packages of src/floatfoam (tests/bodies/, tests/hydrostatics/, ...); the CFD
 regression runs are in tests/cfd/; tests of the whole package stay here. The helper modules here
-(cfdcases, fakes, procutil, references, steps) are importable from every folder
+(cfdcases, fakes, procutil, references) are importable from every folder
 (pyproject.toml: pythonpath = ["tests"]).
 """
 

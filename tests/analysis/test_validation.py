@@ -268,7 +268,7 @@ def test_smaller_steps_is_another_run():
     """--dt-divisor 2: every time-step limit halved, its own folder, its own settings."""
     case = load_case("cylinder_heave")
     halved = smaller_steps(case, 2)
-    for key in ("max_delta_t", "max_courant"):
+    for key in ("max_delta_t", "max_courant", "max_alpha_courant"):
         assert getattr(halved.settings.run, key) == getattr(case.settings.run, key) / 2
     assert settings_digest(halved, "fine") != settings_digest(case, "fine")
     assert layout.run_dir("c", "fine", time_step_divisor=2).name == "fine-dt2"

@@ -66,10 +66,10 @@ def test_cylinder_heave_coarse_decays_with_added_mass(shared_runs):
     assert decay["period_mean"] > theory["heave_period"] * 1.1
     # and by as much as potential flow says: Cummins' model with the exact restoring force (the
     # release is 33 % of the draft), reduced the same way, gives 0.6224 s on this record;
-    # measured 0.6220 s (−0.06 %). On the whole 3.2 s record at the case's step the O-grid's
+    # measured 0.6220 s (−0.06 %). On the whole 3.2 s record at Courant 0.5 and 5 ms the O-grid's
     # levels converge to 0.4 % below Cummins' period (the grid study on movingWallVelocity:
     # coarse 0.6191, fine 0.6182 s against 0.6205 s, U_num 0.77 %; the coarse level at the
-    # defaults 0.6186 s: README), so 1.5 % — twice that U_num — is the mesh or the
+    # defaults 0.6187 s: README), so 1.5 % — twice that U_num — is the mesh or the
     # coupling gone wrong, not the level (the O-grid with a 0.15 m square ran +2.8 % here:
     # docs/studies/cases/cylinder_heave.md); issue 12's criterion is 3 %.
     series = decay_series(case, "cummins", nonlinear_restoring=True, duration=1.6)
@@ -91,12 +91,11 @@ def test_cylinder_heave_coarse_decays_with_added_mass(shared_runs):
 def test_heave_period_moves_little_with_the_step(shared_runs, tmp_path):
     """The heave's fitted period carries a first-order step error no larger than the time-step
     study's: cylinder_heave's coarse 1.6 s at the default step (Courant 1, 0.5 at the
-    interface, ≤ 10 ms; the run of test_cylinder_heave_coarse_decays_with_added_mass)
-    and at half of it (run_case's time_step_divisor 2),
-    2 ranks, at the defaults (the interface on Crank–Nicolson, the body's faces at the step's
-    end, the correctors compensated). And the interface's flux keeps the geometric
-    conservation law on the moving mesh (scripts/build_solver.sh): no cell fills beyond
-    α = 1."""
+    interface, ≤ 10 ms; the run of test_cylinder_heave_coarse_decays_with_added_mass) and at
+    half of it (run_case's time_step_divisor 2), 2 ranks, at the defaults (the interface on
+    Crank–Nicolson, the body's faces at the step's end, the correctors compensated). And the
+    interface's flux keeps the geometric conservation law on the moving mesh
+    (scripts/build_solver.sh): no cell fills beyond α = 1."""
     case = load_case("cylinder_heave", HEAVE_RECORD)
     runs = [heave_record(shared_runs),
             run_case(case, "coarse", 2, build_dir=tmp_path, time_step_divisor=2)]
@@ -245,7 +244,7 @@ def test_interrupted_run_resumes(tmp_path):
     assert float(first.split("=")[1]) > 0.19  # restarted from the written 0.2 s, not from 0
     t = read_motion(result.motion_csv)["time"]
     assert t[0] < 1e-3 and t[-1] == pytest.approx(0.8, abs=1e-6)
-    # no overlap, no gap: a lost row leaves two steps; a step landing on a written time is
-    # stretched by up to a tenth of the largest (measured 10.3 ms at 10 ms)
+    # no overlap, no gap: a lost row leaves two steps; steps of up to 10.3 ms were measured at
+    # the 10 ms limit (the adjustable step landing on a written time)
     largest = load_case("cylinder_heave", RESUMED_RUN).settings.run.max_delta_t
     assert np.all(np.diff(t) > 0) and np.diff(t).max() < 1.5 * largest

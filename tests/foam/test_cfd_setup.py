@@ -26,6 +26,25 @@ def planned(name, overrides=()):
     return case, state, domain.plan(case, "coarse", state["pose"])
 
 
+@pytest.mark.parametrize("overrides, expected", [
+    ([], (1.0, 0.5, 0.01)),  # the defaults (docs/studies/time-step-limits.md)
+    (["run.max_courant=0.3"], (0.3, 0.3, 0.01)),  # a bulk limit below the interface's
+    (["run.max_delta_t=0.004"], (1.0, 0.5, 0.004)),
+])
+def test_the_step_limits_reach_the_control_dictionary(tmp_path, overrides, expected):
+    """controlDict's maxCo, maxAlphaCo and maxDeltaT from [run] at the coarse level: Courant 1 in
+    the bulk, 0.5 at the interface and 10 ms by default; the bulk's limit, when smaller, is the
+    interface's too."""
+    from floatfoam.layout import COMMON_DIR
+
+    case, _, mesh = planned("elliptic_cylinder", overrides)
+    shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
+    render._control(case, tmp_path, mesh, 1.0)
+    control = FoamFile(tmp_path / "system" / "controlDict")
+    limits = (control["maxCo"], control["maxAlphaCo"], control["maxDeltaT"])
+    assert limits == pytest.approx(expected, rel=1e-12)
+
+
 @pytest.mark.parametrize("name, kind, share", [
     ("cylinder_heave", "ogrid", 0.01),  # the O-grid slab is 10 mm of the 1 m section
     ("elliptic_cylinder", "2d", 1.0),
