@@ -141,12 +141,13 @@ def hold_cores(path: Path, ranks: int, label: str = ""):
                     handle = open(slot, "a")
                     try:
                         fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-                        held[k] = handle
-                    except BaseException as err:  # another run's core, or an interrupt
+                    except BlockingIOError:  # another run's core
                         handle.close()
-                        if isinstance(err, BlockingIOError):
-                            continue
+                        continue
+                    except BaseException:  # an interrupt: the file is not left open
+                        handle.close()
                         raise
+                    held[k] = handle
                 if len(held) == need:
                     break
                 wait_message()
