@@ -494,6 +494,17 @@ def test_a_collapsing_time_step_stops_the_run():
     assert Stall(Limits()).check(dip * 2) is None  # no floor: never
 
 
+def test_the_stall_floor_lies_between_a_collapse_and_a_capsize():
+    """The floor (foam.driver.stall_step) stays above the 3–10 µs a collapsing mesh falls to
+    and below the 55 µs of a body turning over, for any largest step from 1 ms up, and under
+    the largest step itself when that is smaller; a finer level divides it by its factor."""
+    from floatfoam.foam.driver import stall_step
+    for max_delta_t in (1e-3, 5e-3, 0.01, 0.05, 0.5):
+        assert 10e-6 < stall_step(max_delta_t, 1.0) < 55e-6
+    assert stall_step(1e-4, 1.0) < 1e-4 / 10
+    assert stall_step(0.01, 2.0) == stall_step(0.01, 1.0) / 2
+
+
 def test_summary_of_a_record_too_short_for_the_fit(tmp_path, capsys):
     """A record of 1.25 cycles (what a strongly radiating section leaves above the noise): the
     run's summary says why the fit is refused and times the period by the first extrema."""

@@ -215,8 +215,8 @@ def _locked_run(plan: RunPlan, mesh, force: bool, lock) -> RunResult:
           f"simulate; log: {run_dir / 'log.interFoam'}")
     limits = runner.Limits(max_courant=case.settings.run.divergence_courant,
                            max_body_speed=case.settings.run.divergence_body_speed,
-                           min_delta_t=STALL_FRACTION * case.settings.run.max_delta_t
-                           / mesh.factor)
+                           min_delta_t=stall_step(case.settings.run.max_delta_t,
+                                                  mesh.factor))
     reference = info.equilibrium_orientation
     log = run_dir / "log.interFoam"
     if resumed and log.is_file():
@@ -249,12 +249,20 @@ def _locked_run(plan: RunPlan, mesh, force: bool, lock) -> RunResult:
     return RunResult(run_dir, motion, info, resumed)
 
 
-# of the level's largest time step: 100 steps in a row below it stop the run (the mesh giving
-# out, or the flow blowing up). Measured: collapses fall to 3–10 µs (runner.Limits); a body
-# turning over legitimately to 55 µs (ellipsoid_printed_verdict, the air over it at 9 m/s),
-# which a floor of 50 µs stopped within 10 %. At the default 10 ms the floor is 25 µs: 2 ×
-# either way.
-STALL_FRACTION = 0.0025
+# 100 steps in a row below the stall step stop the run (the mesh giving out, or the flow
+# blowing up). Measured: collapses fall to 3–10 µs (runner.Limits); a body turning over
+# legitimately to 55 µs (ellipsoid_printed_verdict, the air over it at 9 m/s), which a floor
+# of 50 µs stopped within 10 %. 25 µs is 2 × either way; a largest step under 40 × that
+# (1 ms) lowers it in proportion, so that a run's every step is not below it.
+STALL_STEP = 25e-6
+STALL_FRACTION = 1 / 40
+
+
+def stall_step(max_delta_t: float, factor: float) -> float:
+    """The stall floor of a level whose cells are ``factor`` times finer than the coarse one's
+    (its steps as much shorter): ``STALL_STEP``, or ``STALL_FRACTION`` of a largest step
+    ``max_delta_t`` smaller than 1 ms, over ``factor``."""
+    return min(STALL_STEP, STALL_FRACTION * max_delta_t) / factor
 
 
 def set_aside(case: Case, run_dir: Path, label: str) -> None:
