@@ -64,7 +64,8 @@ KEY_DOCS = {
         "(optional, default 1)"},
     "mass": {"mass": "kg (or density): the body's mass, for a 2D section per its length",
              "density": "kg/m³ (or mass): a homogeneous body's",
-             "cog": "[x, y, z] in m: the centre of gravity G from the body's geometric centre",
+             "cog": "[x, y, z] in m: the centre of gravity G from the body's geometric centre "
+                    "(an stl body's: in the file's coordinates)",
              "gyradius": "[kx, ky, kz] in m: radii of gyration about axes through G"},
     "fluid": {"rho": "kg/m³, water (default 1000)", "nu": "m²/s, water (default 1e-6)",
               "g": "m/s² (default 9.81)", "depth": "m, the water's depth (default inf: deep)",
@@ -284,14 +285,20 @@ def _build(folder: Path, cfg: dict) -> Case:
     depth = math.inf if depth in (math.inf, "inf") else table_number(cfg, "fluid", "depth")
     mass = _mass(cfg, body, fluid["rho"])
     cog = table_vector(cfg, "mass", "cog")
+    stl = cfg["body"].get("shape") == "stl"
     if getattr(body, "pieces", 1) > 1:  # G of two hulls lies between them
         if np.any(cog < body.lo) or np.any(cog > body.hi):
             raise InputError(f"mass.cog = {cog.tolist()} is outside the box about the body's "
                              f"{body.pieces} pieces, {body.lo.round(6).tolist()} to "
                              f"{body.hi.round(6).tolist()}; valid is a point within it")
     elif not body.contains(cog):
+        frame = "in the file's coordinates" if stl else "relative to its geometric centre"
         raise InputError(f"mass.cog = {cog.tolist()} is outside the body; valid is a point "
-                         "inside it (relative to its geometric centre)")
+                         f"inside it ({frame})")
+    if stl:  # from the file's coordinates to its bounding box's centre, G with it
+        from floatfoam.bodies.surfaces import centred
+
+        body, cog = centred(body, cog)
     if "gyradius" not in cfg["mass"]:
         raise InputError("mass.gyradius is missing; valid is [kx, ky, kz] in m, the radii of "
                          "gyration about axes through G")

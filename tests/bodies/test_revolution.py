@@ -13,6 +13,7 @@ from floatfoam.bodies.geometry import extrude_polygon, icosphere, mesh_volume, o
 from floatfoam.bodies.revolution import REVOLUTION_TOLERANCE, cross_section, meridian
 from floatfoam.bodies.shapes import VerticalCylinder
 from floatfoam.case import load_case, with_overrides
+from floatfoam.hydrostatics.theory import equilibrium
 from floatfoam.meshing.domains import build_domain
 from floatfoam.meshing.volume_report import discrete_volume_report
 
@@ -301,3 +302,26 @@ def test_a_run_in_a_wedge_of_triangles_is_not_the_3d_run_of_the_same_file(tmp_pa
     assert _resolved_motion(load_case("sphere"), None) == ["layered"]
     heeled = with_overrides(load_case(str(tmp_path)), ["release.heel=2.0"])
     assert "wedge" not in _resolved_motion(heeled, None)
+
+
+def test_a_body_of_revolution_drawn_off_its_files_axis_heaves_in_a_wedge(tmp_path):
+    """A sphere's STL in rings whose axis lies at (0.7, 0.4) m in its file, G given there: the
+    body frame is its bounding box's centre (floatfoam.bodies.surfaces.centred), so it is a
+    body of revolution about z and heaves in a wedge as the same file on its axis does."""
+    from floatfoam.plan.kind import default_kind
+    from floatfoam.tank import pose
+
+    vertices, faces = rings_sphere(0.1, 24, 48)
+    triangles = (vertices + [0.7, 0.4, 0.0])[faces]
+    records = np.zeros(len(triangles), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)),
+                                              ("a", "<u2")])
+    records["v"] = triangles
+    (tmp_path / "ball.stl").write_bytes(b"\0" * 80 + np.uint32(len(triangles)).tobytes()
+                                        + records.tobytes())
+    (tmp_path / "case.toml").write_text(
+        '[body]\nshape = "stl"\npath = "ball.stl"\n[mass]\ndensity = 500.0\n'
+        'cog = [0.7, 0.4, -0.03]\ngyradius = [0.06, 0.06, 0.06]\n[release]\nheave = 0.01\n')
+    case = load_case(str(tmp_path))
+    assert case.body.is_axisymmetric
+    assert case.cog[:2].tolist() == [0.0, 0.0]
+    assert default_kind(case, pose(case, "release", equilibrium(case))) == "wedge"

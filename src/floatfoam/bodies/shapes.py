@@ -266,6 +266,11 @@ class MeshBody(Body):
     def surface_mesh(self, resolution=None):
         return self.vertices, self.faces
 
+    def moved(self, shift) -> MeshBody:
+        """The same body with every vertex moved by ``shift`` (m)."""
+        return MeshBody(self.vertices + np.asarray(shift, dtype=float), self.faces,
+                        self.expression)
+
     @cached_property
     def pieces(self) -> int:
         """How many separate closed pieces the surface has (two hulls: 2)."""

@@ -52,6 +52,30 @@ def implicit_body(expression: str, bounds, resolution: int = 96) -> MeshBody:
     return MeshBody(verts, faces, expression)
 
 
+#: G within this fraction of an STL body's span of its bounding box's vertical mid-planes is
+#: on them: a centre typed in the file's coordinates, the box's centre computed from them,
+#: which a binary STL holds in single precision (6e-8 of the coordinates)
+MID_PLANE_ROUNDING = 1e-6
+
+
+def centred(body: MeshBody, cog) -> tuple[MeshBody, np.ndarray]:
+    """An STL body moved from its file's coordinates so that the centre of its bounding box is
+    the body frame's origin, as the primitives' is, and G (``cog``, in the file's coordinates)
+    with it: a body of revolution or a mirror-symmetric hull drawn anywhere in its file is then
+    one about the z axis, or about x = 0 and y = 0, and meets the wedge or the half tank
+    (:func:`floatfoam.plan.kind.default_kind`); its heel and trim turn it about that centre.
+    G's x and y within :data:`MID_PLANE_ROUNDING` of the box's mid-planes are put on them. A
+    box already centred (within that) leaves both as they are."""
+    cog = np.asarray(cog, dtype=float)
+    centre = (body.lo + body.hi) / 2.0
+    rounding = MID_PLANE_ROUNDING * float(np.max(body.hi - body.lo))
+    if np.all(np.abs(centre) <= rounding):
+        return body, cog
+    moved = cog - centre
+    moved[:2][np.abs(moved[:2]) <= rounding] = 0.0
+    return body.moved(-centre), moved
+
+
 def stl_body(path: Path, scale: float = 1.0) -> MeshBody:
     """Read a closed triangle mesh from a binary or ASCII STL file (units: m × ``scale``).
 
