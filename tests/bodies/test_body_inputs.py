@@ -238,6 +238,8 @@ def test_an_stl_drawn_away_from_its_origin_is_the_same_body(tmp_path, pontoon):
     for dof in ("heave", "roll"):
         assert here.period(dof) == pytest.approx(there.period(dof), rel=1e-5)
     assert half_plane(moved, pose(moved, "release", equilibrium(moved))) == "x"
+    assert "at (2.5, -1.3, 0.4) m in its file" in here.body  # the theory's first line
+    assert there.body == "MeshBody"
 
 
 def test_an_ascii_stl_with_a_word_for_a_coordinate(tmp_path, pontoon, capsys):

@@ -256,9 +256,13 @@ class MeshBody(Body):
     """Any closed body given as a triangle mesh (from an STL or an implicit surface, whose
     ``expression`` F(x, y, z) it then keeps)."""
 
-    def __init__(self, vertices: np.ndarray, faces: np.ndarray, expression: str | None = None):
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray, expression: str | None = None,
+                 file_origin=None):
         self.vertices, self.faces, self.expression = vertices, faces, expression
         self.lo, self.hi = vertices.min(axis=0), vertices.max(axis=0)
+        #: where the body frame's origin lies in its file's coordinates, when it was moved
+        #: there (:func:`floatfoam.bodies.surfaces.centred`); None: the file's own origin
+        self.file_origin = file_origin
 
     given_by_triangles = True
     takes_layers = True
@@ -267,9 +271,10 @@ class MeshBody(Body):
         return self.vertices, self.faces
 
     def moved(self, shift) -> MeshBody:
-        """The same body with every vertex moved by ``shift`` (m)."""
-        return MeshBody(self.vertices + np.asarray(shift, dtype=float), self.faces,
-                        self.expression)
+        """The same body with every vertex moved by ``shift`` (m): its frame's origin at
+        −``shift`` in the file's coordinates (``file_origin``)."""
+        shift = np.asarray(shift, dtype=float)
+        return MeshBody(self.vertices + shift, self.faces, self.expression, file_origin=-shift)
 
     @cached_property
     def pieces(self) -> int:
