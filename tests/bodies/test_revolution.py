@@ -304,15 +304,18 @@ def test_a_run_in_a_wedge_of_triangles_is_not_the_3d_run_of_the_same_file(tmp_pa
     assert "wedge" not in _resolved_motion(heeled, None)
 
 
-def test_a_body_of_revolution_drawn_off_its_files_axis_heaves_in_a_wedge(tmp_path):
-    """A sphere's STL in rings whose axis lies at (0.7, 0.4) m in its file, G given there: the
-    body frame is its bounding box's centre (floatfoam.bodies.surfaces.centred), so it is a
-    body of revolution about z and heaves in a wedge as the same file on its axis does."""
+@pytest.mark.parametrize("axis", [(0.0, 0.0), (0.7, 0.4)])
+def test_a_body_of_revolution_drawn_off_its_files_axis_heaves_in_a_wedge(tmp_path, axis):
+    """A sphere's STL in rings of 25 sides (its bounding box off its axis by 0.4 mm, the odd
+    side's) on its file's z axis and with that axis at (0.7, 0.4) m, G given on it: the body
+    frame's origin is on the volume's centroid (floatfoam.bodies.surfaces.centred), which lies
+    on the axis whatever the facets' parity, so either file is a body of revolution about z
+    and heaves in a wedge; the one on its axis is not moved."""
     from floatfoam.plan.kind import default_kind
     from floatfoam.tank import pose
 
-    vertices, faces = rings_sphere(0.1, 24, 48)
-    triangles = (vertices + [0.7, 0.4, 0.0])[faces]
+    vertices, faces = rings_sphere(0.1, 24, 25)
+    triangles = (vertices + [*axis, 0.0])[faces]
     records = np.zeros(len(triangles), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)),
                                               ("a", "<u2")])
     records["v"] = triangles
@@ -320,8 +323,10 @@ def test_a_body_of_revolution_drawn_off_its_files_axis_heaves_in_a_wedge(tmp_pat
                                         + records.tobytes())
     (tmp_path / "case.toml").write_text(
         '[body]\nshape = "stl"\npath = "ball.stl"\n[mass]\ndensity = 500.0\n'
-        'cog = [0.7, 0.4, -0.03]\ngyradius = [0.06, 0.06, 0.06]\n[release]\nheave = 0.01\n')
+        f'cog = [{axis[0]}, {axis[1]}, -0.03]\ngyradius = [0.06, 0.06, 0.06]\n'
+        '[release]\nheave = 0.01\n')
     case = load_case(str(tmp_path))
+    assert (case.body.file_origin is None) == (axis == (0.0, 0.0))
     assert case.body.is_axisymmetric
     assert case.cog[:2].tolist() == [0.0, 0.0]
     assert default_kind(case, pose(case, "release", equilibrium(case))) == "wedge"

@@ -1,7 +1,9 @@
 """Floating bodies: the memoir's shapes and any closed surface.
 
 Every body lives in its own frame (docs/conventions.md): origin at the geometric centre (the
-centre of the bounding box for the primitives), x along the long axis, z up. A body gives
+centre of the bounding box for the primitives; for an STL, its volume's centroid in x and y
+and the middle of its height: :func:`floatfoam.bodies.surfaces.centred`), x along the long
+axis, z up. A body gives
 
 * ``surface_mesh()``: a closed, outward-oriented triangle mesh (every body);
 * ``section_polygon()``: its (y, z) section, counter-clockwise (2D sections only);
@@ -273,8 +275,10 @@ class MeshBody(Body):
     def moved(self, shift) -> MeshBody:
         """The same body with every vertex moved by ``shift`` (m): its frame's origin at
         −``shift`` in the file's coordinates (``file_origin``)."""
+        if self.expression is not None:  # F(x, y, z) is in the unmoved coordinates
+            raise ValueError("an implicit body is not moved: its expression's frame is its own")
         shift = np.asarray(shift, dtype=float)
-        return MeshBody(self.vertices + shift, self.faces, self.expression, file_origin=-shift)
+        return MeshBody(self.vertices + shift, self.faces, file_origin=-shift)
 
     @cached_property
     def pieces(self) -> int:

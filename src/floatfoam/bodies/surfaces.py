@@ -52,28 +52,40 @@ def implicit_body(expression: str, bounds, resolution: int = 96) -> MeshBody:
     return MeshBody(verts, faces, expression)
 
 
-#: G within this fraction of an STL body's span of its bounding box's vertical mid-planes is
-#: on them: a centre typed in the file's coordinates, the box's centre computed from them,
-#: which a binary STL holds in single precision (6e-8 of the coordinates)
+#: G within this fraction of an STL body's span or coordinates of its frame's vertical
+#: planes x = 0 and y = 0 is on them: a centre typed in the file's coordinates, the frame's
+#: origin computed from them, which a binary STL holds in single precision (6e-8 of them)
 MID_PLANE_ROUNDING = 1e-6
 
 
+def volume_centroid(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """The centroid of the volume a closed, outward triangle mesh encloses (its tetrahedra from
+    a point inside its box, weighted by their signed volumes): on every plane of symmetry of
+    the triangles and on their axis of revolution, whatever the facets' parity."""
+    ref = (vertices.min(axis=0) + vertices.max(axis=0)) / 2.0
+    a, b, c = (vertices[faces[:, k]] - ref for k in range(3))
+    volumes = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
+    return ref + (volumes[:, None] * (a + b + c)).sum(axis=0) / (4.0 * volumes.sum())
+
+
 def centred(body: MeshBody, cog) -> tuple[MeshBody, np.ndarray]:
-    """An STL body moved from its file's coordinates so that the centre of its bounding box is
-    the body frame's origin, as the primitives' is, and G (``cog``, in the file's coordinates)
-    with it: a body of revolution or a mirror-symmetric hull drawn anywhere in its file is then
-    one about the z axis, or about x = 0 and y = 0, and meets the wedge or the half tank
-    (:func:`floatfoam.plan.kind.default_kind`); its heel and trim turn it about that centre.
-    G's x and y within :data:`MID_PLANE_ROUNDING` of the box's mid-planes are put on them. A
-    box already centred (within that) leaves both as they are."""
+    """An STL body moved from its file's coordinates so that its frame's origin lies on the
+    vertical through the centroid of its volume, halfway up its height, and G (``cog``, in the
+    file's coordinates) with it: a body of revolution or a mirror-symmetric hull drawn anywhere
+    in its file is then one about the z axis, or about x = 0 and y = 0, and meets the wedge or
+    the half tank (:func:`floatfoam.plan.kind.default_kind`); its heel and trim turn it about
+    that origin. G's x and y within :data:`MID_PLANE_ROUNDING` of the frame's vertical planes
+    are put on them. A file whose origin lies there already (within that) is left as it is."""
     cog = np.asarray(cog, dtype=float)
-    centre = (body.lo + body.hi) / 2.0
-    rounding = MID_PLANE_ROUNDING * float(np.max(body.hi - body.lo))
-    if np.all(np.abs(centre) <= rounding):
+    centroid = volume_centroid(body.vertices, body.faces)
+    origin = np.array([centroid[0], centroid[1], (body.lo[2] + body.hi[2]) / 2.0])
+    rounding = MID_PLANE_ROUNDING * max(float(np.max(body.hi - body.lo)),
+                                        float(np.max(np.abs(body.vertices))))
+    if np.all(np.abs(origin) <= rounding):
         return body, cog
-    moved = cog - centre
+    moved = cog - origin
     moved[:2][np.abs(moved[:2]) <= rounding] = 0.0
-    return body.moved(-centre), moved
+    return body.moved(-origin), moved
 
 
 def stl_body(path: Path, scale: float = 1.0) -> MeshBody:

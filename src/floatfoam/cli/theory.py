@@ -54,6 +54,9 @@ def format_summary(s: dict) -> str:
     lines = [f"{s['case']}: {s['body']}{per}, mass {s['mass']:.6g} kg",
              f"equilibrium: heel {eq['heel']:.4g}°, trim {eq['trim']:.4g}°, "
              f"G at z = {eq['z_G']:.6g} m; {'closed form' if s['exact'] else 'numeric'}",
+             *([f"body frame: origin at ({', '.join(f'{v:.6g}' for v in s['file_origin'])}) m "
+                "in the STL (its volume's centroid in x, y; mid-height), mass.cog moved with it"]
+               if s.get("file_origin") else []),
              "", f"{'quantity':<20} {'exact theory':>14} {'memoir':>12} {'memoir':>12}  unit",
              f"{'':<20} {'':>14} {'(corrected)':>12} {'(printed)':>12}",
              "-" * 68]

@@ -49,6 +49,9 @@ class TheorySummary:
     exact: bool
     memoir: dict = field(default_factory=dict)
     memoir_printed: dict = field(default_factory=dict)
+    #: an STL body's frame origin in its file's coordinates (m), where it was moved
+    #: (:func:`floatfoam.bodies.surfaces.centred`); None otherwise
+    file_origin: list | None = None
 
     def period(self, dof: str) -> float | None:
         """Undamped natural period of ``dof`` (s), None when it does not oscillate."""
@@ -67,6 +70,8 @@ class TheorySummary:
         out.update({f"verdict_{d}": self.dofs[d].verdict for d in ANGULAR})
         out.update(equilibrium=self.equilibrium, stiffness=self.stiffness, exact=self.exact,
                    memoir=self.memoir, memoir_printed=self.memoir_printed)
+        if self.file_origin is not None:
+            out["file_origin"] = self.file_origin
         return out
 
     @classmethod
@@ -78,4 +83,5 @@ class TheorySummary:
                    "waterplane_area", "KB", "KG", "stiffness", "exact")
         return cls(**{k: data.get(k) for k in scalars}, dofs=dofs,
                    equilibrium=data.get("equilibrium") or {}, memoir=data.get("memoir") or {},
-                   memoir_printed=data.get("memoir_printed") or {})
+                   memoir_printed=data.get("memoir_printed") or {},
+                   file_origin=data.get("file_origin"))

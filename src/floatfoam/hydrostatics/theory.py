@@ -119,17 +119,6 @@ def natural_period(stiffness: float, inertia: float) -> float | None:
     return 2.0 * math.pi * math.sqrt(inertia / stiffness) if stiffness > 0 else None
 
 
-def _body_name(body) -> str:
-    """The body's class, and for an STL moved from its file's origin where its frame lies in
-    the file's coordinates."""
-    origin = getattr(body, "file_origin", None)
-    if origin is None:
-        return type(body).__name__
-    where = ", ".join(f"{v:.6g}" for v in origin)
-    return (f"{type(body).__name__} (its frame's origin, the box's centre, at ({where}) m in "
-            "its file)")
-
-
 def theory_summary(case: Case, eq: Equilibrium | None = None) -> TheorySummary:
     """Everything the linear theory says about ``case``, in SI units, seconds and degrees
     (``eq``: its equilibrium, solved here when not given).
@@ -163,7 +152,7 @@ def theory_summary(case: Case, eq: Equilibrium | None = None) -> TheorySummary:
 
     return TheorySummary(
         case=case.name,
-        body=_body_name(case.body),
+        body=type(case.body).__name__,
         section_length=case.body.length,
         mass=case.mass,
         draft=draft,
@@ -185,6 +174,8 @@ def theory_summary(case: Case, eq: Equilibrium | None = None) -> TheorySummary:
         exact=imm.exact,
         memoir=memoir_values(case, kg=kg, draft=draft),
         memoir_printed=printed,
+        file_origin=None if getattr(case.body, "file_origin", None) is None
+        else [float(v) for v in case.body.file_origin],
     )
 
 
