@@ -128,9 +128,19 @@ def test_u_num_adds_the_mesh_motions_change():
     ((1.0, 1.0, 1.2), gci.CONVERGED),
 ])
 def test_divergence_is_reported_not_hidden(values, kind):
+    """Levels without an observed order have no GCI of their own, and say how they behave;
+    U_num's levels' part is then 3 × their whole spread over the fine value (Roache's F_s of a
+    study that cannot observe its order), by hand: 3 × 0.15, 3 × 0.2, 3 × 0.2."""
     result = gci.three_grids(*values, 1.5, 1.5)
     assert result.kind == kind and not result.converges
     assert result.order is None and result.gci_fine is None and result.extrapolated is None
+    band = 3 * (max(values) - min(values)) / values[0]
+    time = gci.two_level(1.0, 1.001, 2.0, 1.0)
+    assert numerical_uncertainty(result, time) == pytest.approx(math.hypot(band,
+                                                                           time.gci_coarse))
+    text = _convergence(result.as_dict())
+    assert text.startswith(kind) and "3 × the levels' spread" in text
+    assert f"{100 * band:.2g} %" in text
 
 
 def test_two_grid_gci_of_the_time_step():

@@ -122,6 +122,9 @@ def _convergence(grid: dict, brief: bool = False) -> str:
         kind += (f" — p = {order:.3g}, beyond twice the schemes' order {FORMAL_ORDER:g}: "
                  "its GCI is no bound; U_num takes the fine pair's at that order, F_s = 3, "
                  f"{_pct(levels_gci(grid))}")
+    elif grid.get("gci_fine") is None and levels_gci(grid) is not None and not brief:
+        kind += (" — no observed order: U_num takes 3 × the levels' spread, "
+                 f"{_pct(levels_gci(grid))}")
     return kind
 
 

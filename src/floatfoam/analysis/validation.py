@@ -43,7 +43,9 @@ the record, :func:`floatfoam.analysis.measured.record_fit`) it gives
   (``--no-morphing``, or it did not finish) U_num = √(GCI_levels² + GCI_time²) and the study
   says the mesh motion was not studied. Where the levels' observed order is beyond twice the
   schemes' second order, their GCI is flagged and U_num takes the fine pair's two-grid GCI at
-  second order with F_s = 3 instead (:func:`levels_gci`).
+  second order with F_s = 3 instead; where they have no observed order (they diverge, or
+  converge without one), three times their whole spread, F_s = 3 on the largest difference
+  between them (:func:`levels_gci`): the study still says how they behave.
 
 Written to ``<build>/<case>/validation/`` by :func:`floatfoam.analysis.study_tables.write_study`:
 ``validation.json`` (every number), ``validation.md`` (the table) and ``convergence.png`` (each
@@ -273,12 +275,28 @@ def levels_gci(grid: dict) -> float | None:
     """The levels' GCI_fine that U_num takes: Celik et al.'s, or, for an implausible observed
     order, the fine pair's as a two-grid study at :data:`FORMAL_ORDER` with F_s = 3
     (:func:`floatfoam.analysis.gci.two_level`; always the larger there, since 1.25/(r^p − 1)
-    < 3/(r² − 1) for p > 4)."""
+    < 3/(r² − 1) for p > 4); for levels with no observed order (:func:`spread_band`), three
+    times their whole spread. None without three levels."""
     g = grid.get("gci_fine")
-    if g is None or not implausible_order(grid.get("order")):
+    if g is None:
+        return spread_band(grid)
+    if not implausible_order(grid.get("order")):
         return g
     fine, medium, _ = grid["values"]
     return gci.two_level(fine, medium, grid["ratios"][0], FORMAL_ORDER).gci_fine
+
+
+def spread_band(grid: dict) -> float | None:
+    """For three levels with no observed order (diverging, oscillating apart, converging
+    without a fixed point of the order's equation, or unchanged): F_s = 3 (Roache's safety
+    factor of a study that cannot observe its order) times their largest difference, relative
+    to the fine level's value. Levels that differ by less than their noise diverge as often as
+    they converge; the band then still says how large the difference is. None without three
+    levels' values."""
+    values = grid.get("values")
+    if not values or len(values) != 3 or not values[0]:
+        return None
+    return gci.SAFETY_TWO_GRIDS * (max(values) - min(values)) / abs(values[0])
 
 
 def validate_case(case, build: Path | None = None, time_level: str = TIME_STEP_LEVEL,
