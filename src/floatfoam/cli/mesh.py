@@ -34,7 +34,8 @@ def add_body_arguments(parser) -> None:
     add_case_arguments(parser)
     add_level_argument(parser)
     parser.add_argument("--pose", default="body", choices=POSES,
-                        help="body: its own frame (default); equilibrium: the theory's "
+                        help="body: its own frame (default; an STL's moved to its "
+                             "centroid: docs/conventions.md); equilibrium: the theory's "
                              "floating position; release: equilibrium + the [release] offsets")
     parser.add_argument("--out", metavar="DIR", type=Path,
                         help="output folder (default: build/CASE/mesh/LEVEL)")
