@@ -262,7 +262,7 @@ class MeshBody(Body):
                  file_origin=None):
         self.vertices, self.faces, self.expression = vertices, faces, expression
         self.lo, self.hi = vertices.min(axis=0), vertices.max(axis=0)
-        #: where the body frame's origin lies in its file's coordinates, when it was moved
+        #: where the body frame's origin lies in its file's coordinates, for a body moved
         #: there (:func:`floatfoam.bodies.surfaces.centred`); None: the file's own origin
         self.file_origin = file_origin
 

@@ -49,7 +49,7 @@ class TheorySummary:
     exact: bool
     memoir: dict = field(default_factory=dict)
     memoir_printed: dict = field(default_factory=dict)
-    #: an STL body's frame origin in its file's coordinates (m), where it was moved
+    #: an STL body's frame origin in its file's coordinates (m), for a body moved there
     #: (:func:`floatfoam.bodies.surfaces.centred`); None otherwise
     file_origin: list | None = None
 
