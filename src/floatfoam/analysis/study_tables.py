@@ -62,7 +62,8 @@ def method(time_level: str = TIME_STEP_LEVEL, motion: dict | None = None,
             f"{'first' if order == 1 else 'second' if order == 2 else f'{order:g}'} order)"
             f"{bound}. {_motion_method(motion)} Where the levels' order p is beyond twice the "
             f"schemes' {FORMAL_ORDER:g}, GCI_levels is the fine pair's at order "
-            f"{FORMAL_ORDER:g} with F_s = 3 (Roache).")
+            f"{FORMAL_ORDER:g} with F_s = 3 (Roache); where they have no order, 3 × their "
+            "whole spread.")
 
 
 def _motion_method(motion: dict | None) -> str:
