@@ -295,7 +295,7 @@ def _build(folder: Path, cfg: dict) -> Case:
         frame = "in the file's coordinates" if stl else "relative to its geometric centre"
         raise InputError(f"mass.cog = {cog.tolist()} is outside the body; valid is a point "
                          f"inside it ({frame})")
-    if stl:  # from the file's coordinates to its bounding box's centre, G with it
+    if stl:  # from the file's coordinates to its centroid (x, y) and mid-height, G with it
         from floatfoam.bodies.surfaces import centred
 
         body, cog = centred(body, cog)
