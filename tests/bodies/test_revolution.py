@@ -311,16 +311,12 @@ def test_a_body_of_revolution_drawn_off_its_files_axis_heaves_in_a_wedge(tmp_pat
     frame's origin is on the volume's centroid (floatfoam.bodies.surfaces.centred), which lies
     on the axis whatever the facets' parity, so either file is a body of revolution about z
     and heaves in a wedge; the one on its axis is not moved."""
+    from floatfoam.gmshio import write_stl
     from floatfoam.plan.kind import default_kind
     from floatfoam.tank import pose
 
     vertices, faces = rings_sphere(0.1, 24, 25)
-    triangles = (vertices + [*axis, 0.0])[faces]
-    records = np.zeros(len(triangles), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)),
-                                              ("a", "<u2")])
-    records["v"] = triangles
-    (tmp_path / "ball.stl").write_bytes(b"\0" * 80 + np.uint32(len(triangles)).tobytes()
-                                        + records.tobytes())
+    write_stl(tmp_path / "ball.stl", vertices + [*axis, 0.0], faces)
     (tmp_path / "case.toml").write_text(
         '[body]\nshape = "stl"\npath = "ball.stl"\n[mass]\ndensity = 500.0\n'
         f'cog = [{axis[0]}, {axis[1]}, -0.03]\ngyradius = [0.06, 0.06, 0.06]\n'

@@ -13,6 +13,7 @@ from floatfoam.bodies.geometry import (
     open_edges,
     outward_pieces,
     self_intersection,
+    volume_centroid,
     winding_number,
 )
 from floatfoam.bodies.shapes import MeshBody
@@ -56,16 +57,6 @@ def implicit_body(expression: str, bounds, resolution: int = 96) -> MeshBody:
 #: planes x = 0 and y = 0 is on them: a centre typed in the file's coordinates, the frame's
 #: origin computed from them, which a binary STL holds in single precision (6e-8 of them)
 MID_PLANE_ROUNDING = 1e-6
-
-
-def volume_centroid(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """The centroid of the volume a closed, outward triangle mesh encloses (its tetrahedra from
-    a point inside its box, weighted by their signed volumes): on every plane of symmetry of
-    the triangles and on their axis of revolution, whatever the facets' parity."""
-    ref = (vertices.min(axis=0) + vertices.max(axis=0)) / 2.0
-    a, b, c = (vertices[faces[:, k]] - ref for k in range(3))
-    volumes = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
-    return ref + (volumes[:, None] * (a + b + c)).sum(axis=0) / (4.0 * volumes.sum())
 
 
 def centred(body: MeshBody, cog) -> tuple[MeshBody, np.ndarray]:
