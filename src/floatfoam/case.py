@@ -179,7 +179,8 @@ def with_overrides(case: Case, overrides) -> Case:
 
 def _read_toml(folder: Path, seen: list[Path]) -> dict:
     """The case file of ``folder``, with the tables of the case it ``extends`` beneath it
-    (table by table: a key it sets replaces the base's)."""
+    (table by table: a key it sets replaces the base's; the files the base names are read
+    from the base's folder)."""
     if folder in seen:
         chain = " → ".join(p.name for p in [*seen, folder])
         raise InputError(f"case.extends: the cases extend one another in a loop ({chain}); "
@@ -204,7 +205,8 @@ def _read_toml(folder: Path, seen: list[Path]) -> dict:
     if not isinstance(base_name, str):
         raise InputError(f"case.extends = {base_name!r} in {folder / 'case.toml'}: valid is the "
                          "name of another case (a string)")
-    merged = _read_toml(case_dir(base_name), [*seen, folder])
+    base = case_dir(base_name)
+    merged = _rebased(_read_toml(base, [*seen, folder]), base, folder)
     merged.get("case", {}).pop("extends", None)
     for table, values in raw.items():
         if isinstance(values, dict):
@@ -217,6 +219,25 @@ def _read_toml(folder: Path, seen: list[Path]) -> dict:
         else:
             merged[table] = values
     return merged
+
+
+def _rebased(raw: dict, base: Path, folder: Path) -> dict:
+    """The base case's tables with the files they name (``body.path``, a reference's
+    ``file``), where relative to the base's folder, made relative to ``folder``, the extending
+    case's: it reads them from there."""
+    def moved(path):
+        if not isinstance(path, str) or Path(path).is_absolute():
+            return path
+        return os.path.relpath(os.path.abspath(base / path), os.path.abspath(folder))
+
+    body = raw.get("body")
+    if isinstance(body, dict) and "path" in body:
+        body["path"] = moved(body["path"])
+    for entry in raw.get("reference", {}).values() \
+            if isinstance(raw.get("reference"), dict) else ():
+        if isinstance(entry, dict) and "file" in entry:
+            entry["file"] = moved(entry["file"])
+    return raw
 
 
 def apply_override(raw: dict, item: str) -> None:

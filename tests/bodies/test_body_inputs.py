@@ -243,6 +243,24 @@ def test_an_stl_drawn_away_from_its_origin_is_the_same_body(tmp_path, pontoon, s
     assert there.file_origin is None
 
 
+def test_a_case_extending_an_stl_case_elsewhere_reads_the_base_s_file(tmp_path, pontoon):
+    """A case in another folder that extends an STL case takes the base's triangles from the
+    base's folder (its body.path is relative to it), and the run's digest follows the file's
+    triangles, not its name: a re-exported file makes the runs of the old one foreign."""
+    from floatfoam.plan.stamps import settings_digest
+
+    base = case_with_stl(tmp_path, lambda p: write_binary(p, pontoon))
+    mine = tmp_path / "elsewhere" / "mine"
+    mine.mkdir(parents=True)
+    (mine / "case.toml").write_text(f'[case]\nextends = "{base}"\n[mass]\ndensity = 450.0\n')
+    case = load_case(str(mine))
+    assert case.raw["body"]["path"] == "../../case/pontoon.stl"
+    assert case.body.volume() == pytest.approx(load_case(str(base)).body.volume(), rel=1e-12)
+    before = settings_digest(case, "coarse")
+    write_binary(base / "pontoon.stl", pontoon * [1.0, 1.0, 1.001])
+    assert settings_digest(load_case(str(mine)), "coarse") != before
+
+
 def test_an_ascii_stl_with_a_word_for_a_coordinate(tmp_path, pontoon, capsys):
     path = write_ascii(tmp_path / "bad.stl", pontoon, {(3, 1): "0.1 abc 0.2"})
     refused(lambda: stl_body(path), str(path), "line 26", "0.1 abc 0.2", "three numbers")

@@ -24,7 +24,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     mesh motion they resolve to (:func:`_resolved_motion`), the level, the time-step divisor
     and morphing factor of a study's run, the shared dictionaries, the body's velocity
     condition and the coupling's compensation (:data:`BODY_VELOCITY`, :data:`COMPENSATION`)
-    and the solver binary. Not
+    and the solver binary; an STL body's file. Not
     the case's words ([case] title, description, and the name of the case it extends: its
     tables are in), nor its [reference] measurements: adding a measurement must not make a
     finished run look foreign; nor run.end_time, which says only how far the run goes (its
@@ -51,6 +51,9 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     for path in sorted(layout.COMMON_DIR.rglob("*")):
         if path.is_file():
             digest.update(path.read_bytes())
+    body = case.raw.get("body", {})
+    if body.get("shape") == "stl":  # the file's triangles, not its name alone
+        digest.update((Path(case.path) / body["path"]).read_bytes())
     digest.update(f"{BODY_VELOCITY} {COMPENSATION} {COMPENSATION_FORM}".encode())
     digest.update(str(solver_path(case, check=False)).encode())
     return digest.hexdigest()[:16]
