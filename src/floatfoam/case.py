@@ -65,7 +65,8 @@ KEY_DOCS = {
     "mass": {"mass": "kg (or density): the body's mass, for a 2D section per its length",
              "density": "kg/m³ (or mass): a homogeneous body's",
              "cog": "[x, y, z] in m: the centre of gravity G from the body's geometric centre "
-                    "(an stl body's: in the file's coordinates)",
+                    "(an stl body's: in the file's coordinates, default its volume's "
+                    "centroid)",
              "gyradius": "[kx, ky, kz] in m: radii of gyration about axes through G"},
     "fluid": {"rho": "kg/m³, water (default 1000)", "nu": "m²/s, water (default 1e-6)",
               "g": "m/s² (default 9.81)", "depth": "m, the water's depth (default inf: deep)",
@@ -75,6 +76,9 @@ KEY_DOCS = {
     "reference": {"<name>": "a measurement: {value, uncertainty, source}, or a record "
                   "<name>_record = {file, source} (a CSV beside case.toml)"},
 }
+#: ``mass.cog`` of an STL body that does not give it: the centroid of its volume.
+CENTROID = "centroid"
+
 DEFAULTS = {
     "fluid": {"rho": 1000.0, "nu": 1.0e-6, "g": 9.81, "rho_air": 1.0, "nu_air": 1.48e-5},
     "release": dict.fromkeys(RELEASE_KEYS, 0.0),
@@ -165,6 +169,8 @@ def load_case(name_or_path: str, overrides=()) -> Case:
     merged = copy.deepcopy(DEFAULTS)
     for table, values in raw.items():
         merged.setdefault(table, {}).update(values)
+    if merged["body"].get("shape") == "stl" and "cog" not in raw.get("mass", {}):
+        merged["mass"]["cog"] = CENTROID  # a homogeneous body's G, where the file has it
     return _build(folder, merged)
 
 
@@ -305,8 +311,18 @@ def _build(folder: Path, cfg: dict) -> Case:
     depth = cfg["fluid"].get("depth", math.inf)
     depth = math.inf if depth in (math.inf, "inf") else table_number(cfg, "fluid", "depth")
     mass = _mass(cfg, body, fluid["rho"])
-    cog = table_vector(cfg, "mass", "cog")
     stl = cfg["body"].get("shape") == "stl"
+    if stl and cfg["mass"]["cog"] == CENTROID:
+        from floatfoam.bodies.geometry import volume_centroid
+
+        cog = volume_centroid(body.vertices, body.faces)
+        if getattr(body, "pieces", 1) == 1 and not body.contains(cog):
+            where = (cog.round(6) + 0.0).tolist()  # no −0.0
+            raise InputError(f"mass.cog is not given and the centroid of the body's volume, "
+                             f"{where} in the file's coordinates, is outside it; valid is "
+                             "mass.cog = [x, y, z], a point inside the body")
+    else:
+        cog = table_vector(cfg, "mass", "cog")
     if getattr(body, "pieces", 1) > 1:  # G of two hulls lies between them
         if np.any(cog < body.lo) or np.any(cog > body.hi):
             raise InputError(f"mass.cog = {cog.tolist()} is outside the box about the body's "

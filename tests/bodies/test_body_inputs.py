@@ -243,6 +243,35 @@ def test_an_stl_drawn_away_from_its_origin_is_the_same_body(tmp_path, pontoon, s
     assert there.file_origin is None
 
 
+def test_an_stl_without_cog_takes_its_volume_s_centroid(tmp_path, pontoon):
+    """An STL case that gives no mass.cog has G at its volume's centroid (a homogeneous
+    body's), wherever the file's origin is: the pontoon drawn from a corner, without cog, is
+    the centred pontoon with G at its centre; a body whose centroid lies outside it (a ring)
+    is refused in one line asking for mass.cog."""
+    shift = np.array([0.6, 0.25, 0.12])  # the file's origin at the hull's corner
+    folder = case_with_stl(tmp_path, lambda p: write_binary(p, pontoon + shift))
+    toml = folder / "case.toml"
+    toml.write_text(toml.read_text().replace("cog = [0.0, 0.0, -0.03]\n", ""))
+    case = load_case(str(folder))
+    assert case.cog == pytest.approx(np.zeros(3), abs=1e-5)  # single-precision coordinates
+    assert load_case(str(folder), ["mass.cog=[0.6, 0.25, 0.09]"]).cog[2] == \
+        pytest.approx(-0.03, abs=1e-5)  # given: in the file's coordinates
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 33)[:-1], np.linspace(0, 2 * np.pi, 17)[:-1],
+                       indexing="ij")  # a ring: R 0.3 m, r 0.05 m, its centroid in the hole
+    points = np.stack([(0.3 + 0.05 * np.cos(v)) * np.cos(u), (0.3 + 0.05 * np.cos(v))
+                       * np.sin(u), 0.05 * np.sin(v)], axis=-1)
+    i, j = np.meshgrid(np.arange(32), np.arange(16), indexing="ij")
+    a, b, c, d = (points[(i + di) % 32, (j + dj) % 16] for di, dj in
+                  ((0, 0), (1, 0), (1, 1), (0, 1)))
+    quads = np.stack([a, b, c, d], axis=-2).reshape(-1, 4, 3)
+    (tmp_path / "ring").mkdir()
+    folder = case_with_stl(tmp_path / "ring", lambda p: write_binary(
+        p, np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])))
+    toml = folder / "case.toml"
+    toml.write_text(toml.read_text().replace("cog = [0.0, 0.0, -0.03]\n", ""))
+    refused(lambda: load_case(str(folder)), "mass.cog", "centroid", "outside")
+
+
 def test_a_case_extending_an_stl_case_elsewhere_reads_the_base_s_file(tmp_path, pontoon):
     """A case in another folder that extends an STL case takes the base's triangles from the
     base's folder (its body.path is relative to it), and the run's digest follows the file's
