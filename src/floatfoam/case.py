@@ -312,15 +312,11 @@ def _build(folder: Path, cfg: dict) -> Case:
     depth = math.inf if depth in (math.inf, "inf") else table_number(cfg, "fluid", "depth")
     mass = _mass(cfg, body, fluid["rho"])
     stl = cfg["body"].get("shape") == "stl"
-    if stl and cfg["mass"]["cog"] == CENTROID:
+    centroid = stl and cfg["mass"]["cog"] == CENTROID
+    if centroid:
         from floatfoam.bodies.geometry import volume_centroid
 
         cog = volume_centroid(body.vertices, body.faces)
-        if getattr(body, "pieces", 1) == 1 and not body.contains(cog):
-            where = (cog.round(6) + 0.0).tolist()  # no −0.0
-            raise InputError(f"mass.cog is not given and the centroid of the body's volume, "
-                             f"{where} in the file's coordinates, is outside it; valid is "
-                             "mass.cog = [x, y, z], a point inside the body")
     else:
         cog = table_vector(cfg, "mass", "cog")
     if getattr(body, "pieces", 1) > 1:  # G of two hulls lies between them
@@ -328,6 +324,11 @@ def _build(folder: Path, cfg: dict) -> Case:
             raise InputError(f"mass.cog = {cog.tolist()} is outside the box about the body's "
                              f"{body.pieces} pieces, {body.lo.round(6).tolist()} to "
                              f"{body.hi.round(6).tolist()}; valid is a point within it")
+    elif centroid and not body.contains(cog):
+        where = (cog.round(6) + 0.0).tolist()  # no −0.0
+        raise InputError(f"mass.cog is not given and the centroid of the body's volume, "
+                         f"{where} in the file's coordinates, is outside it; valid is "
+                         "mass.cog = [x, y, z], a point inside the body")
     elif not body.contains(cog):
         frame = "in the file's coordinates" if stl else "relative to its geometric centre"
         raise InputError(f"mass.cog = {cog.tolist()} is outside the body; valid is a point "

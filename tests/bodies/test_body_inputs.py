@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from bodycases import torus
 
 from floatfoam.bodies.expression import (
     MAX_EXPRESSION_DEPTH,
@@ -256,17 +257,9 @@ def test_an_stl_without_cog_takes_its_volume_s_centroid(tmp_path, pontoon):
     assert case.cog == pytest.approx(np.zeros(3), abs=1e-5)  # single-precision coordinates
     assert load_case(str(folder), ["mass.cog=[0.6, 0.25, 0.09]"]).cog[2] == \
         pytest.approx(-0.03, abs=1e-5)  # given: in the file's coordinates
-    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 33)[:-1], np.linspace(0, 2 * np.pi, 17)[:-1],
-                       indexing="ij")  # a ring: R 0.3 m, r 0.05 m, its centroid in the hole
-    points = np.stack([(0.3 + 0.05 * np.cos(v)) * np.cos(u), (0.3 + 0.05 * np.cos(v))
-                       * np.sin(u), 0.05 * np.sin(v)], axis=-1)
-    i, j = np.meshgrid(np.arange(32), np.arange(16), indexing="ij")
-    a, b, c, d = (points[(i + di) % 32, (j + dj) % 16] for di, dj in
-                  ((0, 0), (1, 0), (1, 1), (0, 1)))
-    quads = np.stack([a, b, c, d], axis=-2).reshape(-1, 4, 3)
+    vertices, faces = torus(0.3, 0.05, 32, 16)  # a ring: its centroid in the hole
     (tmp_path / "ring").mkdir()
-    folder = case_with_stl(tmp_path / "ring", lambda p: write_binary(
-        p, np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])))
+    folder = case_with_stl(tmp_path / "ring", lambda p: write_binary(p, vertices[faces]))
     toml = folder / "case.toml"
     toml.write_text(toml.read_text().replace("cog = [0.0, 0.0, -0.03]\n", ""))
     refused(lambda: load_case(str(folder)), "mass.cog", "centroid", "outside")

@@ -8,6 +8,7 @@ import shutil
 import numpy as np
 import pytest
 from bodycases import IMPLICIT_SPHERE as SPHERE
+from bodycases import torus
 
 from floatfoam.bodies.geometry import extrude_polygon, icosphere, mesh_volume, open_edges
 from floatfoam.bodies.revolution import REVOLUTION_TOLERANCE, cross_section, meridian
@@ -138,7 +139,7 @@ def test_bodies_that_are_not_of_revolution_about_z(change):
                                                     [-0.1, 0.1]]), 0.2)
         vertices = vertices[:, [1, 2, 0]]  # the extrusion along z
     elif change == "a ring":
-        vertices, faces = _torus(0.1, 0.03)
+        vertices, faces = torus(0.1, 0.03)
     else:
         vertices, faces = _pipe(0.1, 0.05, 0.2)
     assert meridian(vertices, faces) is None
@@ -147,7 +148,7 @@ def test_bodies_that_are_not_of_revolution_about_z(change):
 def test_a_cross_section_is_its_loops():
     """The plane through a torus's middle cuts two loops of its tube's radii; above its top,
     none."""
-    vertices, faces = _torus(0.1, 0.03)
+    vertices, faces = torus(0.1, 0.03)
     loops = cross_section(vertices, faces, 0.001)
     assert len(loops) == 2
     radii = sorted(float(np.hypot(*loop.T).mean()) for loop in loops)
@@ -213,22 +214,6 @@ def test_layers_are_refused_in_a_wedge_only_when_asked(tmp_path):
     with pytest.raises(Exception, match=r"layers_3d = 3: .* valid is 0, or mesh.gmsh.wedge "
                                         r"= false"):
         build_domain(load_case(str(tmp_path)), "coarse", path=tmp_path / "w.msh")
-
-
-def _torus(big: float, small: float, n: int = 48, m: int = 24):
-    u = np.linspace(0, 2 * math.pi, n, endpoint=False)
-    v = np.linspace(0, 2 * math.pi, m, endpoint=False)
-    vertices = np.array([[(big + small * math.cos(b)) * math.cos(a),
-                          (big + small * math.cos(b)) * math.sin(a), small * math.sin(b)]
-                         for a in u for b in v])
-    faces = []
-    for i in range(n):
-        for j in range(m):
-            p, q = i * m + j, ((i + 1) % n) * m + j
-            pj, qj = i * m + (j + 1) % m, ((i + 1) % n) * m + (j + 1) % m
-            faces += [(p, q, qj), (p, qj, pj)]
-    faces = np.array(faces)
-    return (vertices, faces) if mesh_volume(vertices, faces) > 0 else (vertices, faces[:, ::-1])
 
 
 def _cylinder(radius: float, bottom: float, top: float, n: int = 96):
