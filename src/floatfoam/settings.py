@@ -81,13 +81,17 @@ class RunSettings:
     # steps themselves), and the times a run restarts from
     write_interval: float = spec(0.1, minimum=0.0,
                                   doc="s between written fields (the last falls on end_time)")
-    # Courant 1 in the bulk, 0.5 at the interface, steps ≤ 10 ms: against 0.5 everywhere and
-    # 5 ms, the coarse whole records of the 2D sections and the wedges take 0.44–0.64 × the
-    # wall, their periods within 0.21 % and ζ within 3 % (docs/studies/time-step-limits.md);
-    # on a tetrahedral free surface the air's spurious currents hold the bulk's step
-    # (docs/studies/cases/ellipsoid_roll.md)
-    max_courant: float = spec(1.0, minimum=0.0, maximum=5.0,
-                               doc="the largest Courant number the adjustable time step allows")
+    # Courant 0.5 at the interface and steps ≤ 10 ms; in the bulk 3 on a 2D section's mesh
+    # (gmsh's or an O-grid's), 1 on a wedge and in a 3D tank (floatfoam.plan.release.
+    # BULK_COURANT): the project's sections run at 10 ms whatever the bulk's limit (their
+    # records the same to 1e-5), while a section with small bilge cells, whose water there holds
+    # the step, runs its record in 0.47 × the wall of Courant 1, its period within 0.12 % and ζ
+    # within 4 % (docs/studies/time-step-limits.md); in 3D the air's spurious currents over the
+    # tetrahedral free surface hold the bulk's step (docs/studies/cases/ellipsoid_roll.md)
+    max_courant: float | None = spec(None, minimum=0.0, maximum=5.0,
+                                     doc="the largest Courant number the adjustable time step "
+                                     "allows in the bulk; by default 3 on a 2D section's mesh, "
+                                     "1 on a wedge and in a 3D tank")
     max_alpha_courant: float = spec(0.5, minimum=0.0, maximum=5.0,
                                     doc="the same at the interface (max_courant, if smaller, "
                                         "holds there too)")

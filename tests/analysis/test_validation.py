@@ -277,9 +277,10 @@ def test_study_of_synthetic_records_finds_their_order(tmp_path, time_level, morp
 def test_smaller_steps_is_another_run():
     """--dt-divisor 2: every time-step limit halved, its own folder, its own settings."""
     case = load_case("cylinder_heave")
-    halved = smaller_steps(case, 2)
-    for key in ("max_delta_t", "max_courant", "max_alpha_courant"):
+    halved = smaller_steps(case, 2, "ogrid")
+    for key in ("max_delta_t", "max_alpha_courant"):
         assert getattr(halved.settings.run, key) == getattr(case.settings.run, key) / 2
+    assert halved.settings.run.max_courant == 1.5  # the O-grid's bulk limit 3 (BULK_COURANT)
     assert settings_digest(halved, "fine") != settings_digest(case, "fine")
     assert layout.run_dir("c", "fine", time_step_divisor=2).name == "fine-dt2"
     assert layout.run_dir("c", "coarse", morphing=1.5).name == "coarse-morph1.5"

@@ -26,18 +26,21 @@ def planned(name, overrides=()):
     return case, state, domain.plan(case, "coarse", state["pose"])
 
 
-@pytest.mark.parametrize("overrides, expected", [
-    ([], (1.0, 0.5, 0.01)),  # the defaults (docs/studies/time-step-limits.md)
-    (["run.max_courant=0.3"], (0.3, 0.3, 0.01)),  # a bulk limit below the interface's
-    (["run.max_delta_t=0.004"], (1.0, 0.5, 0.004)),
+@pytest.mark.parametrize("name, overrides, expected", [
+    ("elliptic_cylinder", [], (3.0, 0.5, 0.01)),  # a 2D section's (time-step-limits.md)
+    ("ellipsoid_roll", [], (1.0, 0.5, 0.01)),  # a 3D tank's bulk limit
+    ("sphere", [], (1.0, 0.5, 0.01)),  # a wedge's
+    ("elliptic_cylinder", ["run.max_courant=0.3"], (0.3, 0.3, 0.01)),  # below the interface's
+    ("ellipsoid_roll", ["run.max_courant=2"], (2.0, 0.5, 0.01)),  # set, in 3D
+    ("elliptic_cylinder", ["run.max_delta_t=0.004"], (3.0, 0.5, 0.004)),
 ])
-def test_the_step_limits_reach_the_control_dictionary(tmp_path, overrides, expected):
-    """controlDict's maxCo, maxAlphaCo and maxDeltaT from [run] at the coarse level: Courant 1 in
-    the bulk, 0.5 at the interface and 10 ms by default; the bulk's limit, when smaller, is the
-    interface's too."""
+def test_the_step_limits_reach_the_control_dictionary(tmp_path, name, overrides, expected):
+    """controlDict's maxCo, maxAlphaCo and maxDeltaT from [run] at the coarse level: Courant 3
+    in the bulk of a 2D section's mesh and 1 on a wedge and in a 3D tank, 0.5 at the interface
+    and 10 ms by default; the bulk's limit, when smaller, is the interface's too."""
     from floatfoam.layout import COMMON_DIR
 
-    case, _, mesh = planned("elliptic_cylinder", overrides)
+    case, _, mesh = planned(name, overrides)
     shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
     render._control(case, tmp_path, mesh, 1.0)
     control = FoamFile(tmp_path / "system" / "controlDict")
@@ -537,3 +540,15 @@ def test_a_capsizing_release_is_summarised_by_its_turn(capsys):
     out = capsys.readouterr().out
     assert "from 5 deg to 27.78 deg at 0.600 s" in out
     assert f"10 deg at {np.arccosh(2.0) / 4:.3f} s" in out and "20 deg at" in out
+
+
+@pytest.mark.parametrize("name, halved", [("elliptic_cylinder", 1.5), ("sphere", 0.5),
+                                          ("ellipsoid_roll", 0.5)])
+def test_a_time_step_study_halves_the_bulk_limit_of_its_mesh(name, halved):
+    """--dt-divisor 2 halves the bulk's Courant limit the mesh's kind resolves to (3 on a
+    section, 1 on a wedge and in a 3D tank), with the interface's and the largest step."""
+    from floatfoam.plan.runplan import resolve
+
+    run = resolve(load_case(name), divisor=2, solver=False).case.settings.run
+    assert (run.max_courant, run.max_alpha_courant, run.max_delta_t) == pytest.approx(
+        (halved, 0.25, 0.005), rel=1e-12)

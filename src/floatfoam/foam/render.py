@@ -23,6 +23,7 @@ from floatfoam.foam.domain import RunMesh
 from floatfoam.foam.patches import write_initial_fields
 from floatfoam.layout import COMMON_DIR
 from floatfoam.plan.record import RunRecord
+from floatfoam.plan.release import bulk_courant
 from floatfoam.plan.runplan import RunPlan
 from floatfoam.plan.stamps import COMPENSATION, has_body_velocity, solver_has
 from floatfoam.plan.zone import LAYERED_SOLVER, free_names, heave_only
@@ -152,8 +153,9 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
     run = case.settings.run
     control["endTime"] = end_time
     control["writeInterval"] = write_interval(end_time, min(run.write_interval, end_time))
-    control["maxCo"] = run.max_courant
-    control["maxAlphaCo"] = min(run.max_alpha_courant, run.max_courant)
+    bulk = bulk_courant(case, mesh.kind)
+    control["maxCo"] = bulk
+    control["maxAlphaCo"] = min(run.max_alpha_courant, bulk)
     control["maxDeltaT"] = run.max_delta_t / mesh.factor
     pimple = FoamFile(run_dir / "system" / "fvSolution")["PIMPLE"]
     pimple["nOuterCorrectors"] = 1 if run.static_body else run.outer_correctors

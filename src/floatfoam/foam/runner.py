@@ -52,7 +52,7 @@ class RunError(ComputationError):
 class Limits:
     """Divergence thresholds: a step beyond them stops the run."""
 
-    max_courant: float = 20.0  # ~20× the default maxCo 1: only a blow-up gets there
+    max_courant: float = 20.0  # 7–20× the default maxCo (3, 1 in 3D): only a blow-up gets there
     max_body_speed: float = 10.0  # m/s
     # A morphing mesh that can no longer follow the body squeezes cells until the Courant limit
     # shrinks the time step ~500× (measured: the capsizing ellipse at 80°, 5 ms → 1e-5 s, after

@@ -87,9 +87,25 @@ def mesh_pose(case: Case, state: dict, equilibrium: Equilibrium):
     return made
 
 
-def smaller_steps(case: Case, divisor: int) -> Case:
-    """The case with its time-step limits (run.max_delta_t, run.max_courant and
-    run.max_alpha_courant) divided by ``divisor``, a whole number ≥ 1."""
+# the bulk's Courant limit by the mesh's kind (:func:`floatfoam.plan.kind.kind_of`) where the
+# case sets no run.max_courant: 3 on a 2D section's cells, gmsh's or an O-grid's
+# (docs/studies/time-step-limits.md); 1 on a wedge, whose finer levels' steps the bulk's limit
+# holds through the laboratory sphere's splash (not measured at 3), and in a 3D tank, where 3
+# was measured on stl_pontoon alone
+BULK_COURANT = {"2d": 3.0, "ogrid": 3.0, "wedge": 1.0, "3d": 1.0, "3d-half": 1.0}
+
+
+def bulk_courant(case: Case, kind: str) -> float:
+    """The largest Courant number in the bulk of a run of ``case`` in a domain of ``kind``:
+    ``run.max_courant``, or :data:`BULK_COURANT`'s for the kind."""
+    value = case.settings.run.max_courant
+    return BULK_COURANT[kind] if value is None else value
+
+
+def smaller_steps(case: Case, divisor: int, kind: str) -> Case:
+    """The case with its time-step limits (run.max_delta_t, run.max_courant, as
+    :func:`bulk_courant` resolves it in a domain of ``kind``, and run.max_alpha_courant)
+    divided by ``divisor``, a whole number ≥ 1."""
     if isinstance(divisor, bool) or not isinstance(divisor, int) or divisor < 1:
         raise InputError(f"--dt-divisor {divisor!r}: valid is a whole number ≥ 1")
     if divisor == 1:
@@ -97,7 +113,7 @@ def smaller_steps(case: Case, divisor: int) -> Case:
     from floatfoam.case import with_overrides
 
     run = case.settings.run
-    limits = {"max_delta_t": run.max_delta_t, "max_courant": run.max_courant,
+    limits = {"max_delta_t": run.max_delta_t, "max_courant": bulk_courant(case, kind),
               "max_alpha_courant": run.max_alpha_courant}
     return with_overrides(case, [f"run.{key}={value / divisor!r}"
                                  for key, value in limits.items()])

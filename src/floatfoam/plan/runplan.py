@@ -14,6 +14,7 @@ from floatfoam import layout
 from floatfoam.case import Case
 from floatfoam.hydrostatics.theory import Equilibrium
 from floatfoam.plan import zone
+from floatfoam.plan.kind import kind_of
 from floatfoam.plan.level import level_index
 from floatfoam.plan.morphing import check_morphing, scaled_morphing
 from floatfoam.plan.release import end_time_of, mesh_pose, release_state, smaller_steps
@@ -83,15 +84,15 @@ def resolve(case: Case, level: str = "coarse", np_: int = 1, *,
     writes nothing."""
     level_index(level)
     check_morphing(morphing)
-    run = smaller_steps(case, divisor)
     if solver:
-        solver_path(run)  # refused before anything is done when missing
-        check_interface_gravity_solver(run)
+        solver_path(case)  # refused before anything is done when missing
+        check_interface_gravity_solver(case)
     if equilibrium is None:
         from floatfoam.hydrostatics.theory import equilibrium as solve
 
         equilibrium = solve(case)
-    state = release_state(run, equilibrium)
+    state = release_state(case, equilibrium)
+    run = smaller_steps(case, divisor, kind_of(case, state["pose"]))
     made_at = mesh_pose(run, state, equilibrium)
     end_time = end_time_of(run)
     run = scaled_morphing(run, state["pose"], morphing)
