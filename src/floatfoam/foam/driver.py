@@ -206,7 +206,8 @@ def _locked_run(plan: RunPlan, mesh, force: bool, lock) -> RunResult:
         shutil.copytree(run_dir / "0.orig", run_dir / "0")
         layout.mark_done(run_dir, "fields")
     if any(info.mesh_offset or ()):
-        to_release_pose(case, run_dir, info, np_, hostfile, label)
+        with solver_turn(label, np_, hostfile):  # its solver and setAlphaField on the ranks
+            to_release_pose(case, run_dir, info, np_, hostfile, label)
     else:
         runner.run_app(run_dir, "setAlphaField", ["setAlphaField"])
         if np_ > 1:
