@@ -289,6 +289,20 @@ def test_smaller_steps_is_another_run():
     assert settings_digest(more, "fine") == settings_digest(case, "fine")
 
 
+def test_the_digest_holds_the_bulk_limit_the_mesh_resolves_to(monkeypatch):
+    """The digest holds the bulk Courant limit each mesh's kind resolves to: another limit
+    for 2D sections makes a section's run another run, and leaves a wedge's and a 3D tank's."""
+    from floatfoam.plan import release as release_module
+
+    names = ("elliptic_cylinder", "sphere", "ellipsoid_roll")
+    before = {name: settings_digest(load_case(name), "coarse") for name in names}
+    monkeypatch.setitem(release_module.BULK_COURANT, "2d", 2.0)
+    after = {name: settings_digest(load_case(name), "coarse") for name in names}
+    assert after["elliptic_cylinder"] != before["elliptic_cylinder"]
+    assert after["sphere"] == before["sphere"]
+    assert after["ellipsoid_roll"] == before["ellipsoid_roll"]
+
+
 def test_a_setting_added_later_leaves_the_runs_before_it():
     """A field marked ``added`` (mesh.gmsh.layers_height_3d and run.motion_diffusivity) is
     out of the stamp at its default, written out or not, and one at its ``inert`` value (0

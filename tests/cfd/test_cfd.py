@@ -52,7 +52,7 @@ def heave_record(shared_runs):
 
 def test_cylinder_heave_coarse_decays_with_added_mass(shared_runs):
     """2.6 heave periods (1.6 s) of the coarse run, on 2 MPI ranks (decomposePar + mpirun), at
-    the default step (Courant 1 in the bulk, 0.5 at the interface, ≤ 10 ms: 193 steps), its
+    the default step (Courant 3 in the bulk, 0.5 at the interface, ≤ 10 ms: 193 steps), its
     mesh moved by the layered motion of a heave release (src/solver/)."""
     case = load_case("cylinder_heave", HEAVE_RECORD)
     theory = theory_summary(case).to_dict()
@@ -90,7 +90,7 @@ def test_cylinder_heave_coarse_decays_with_added_mass(shared_runs):
 
 def test_heave_period_moves_little_with_the_step(shared_runs, tmp_path):
     """The heave's fitted period carries a first-order step error no larger than the time-step
-    study's: cylinder_heave's coarse 1.6 s at the default step (Courant 1, 0.5 at the
+    study's: cylinder_heave's coarse 1.6 s at the default step (Courant 3, 0.5 at the
     interface, ≤ 10 ms; the run of test_cylinder_heave_coarse_decays_with_added_mass) and at
     half of it (run_case's time_step_divisor 2), 2 ranks, at the defaults (the interface on
     Crank–Nicolson, the body's faces at the step's end, the correctors compensated). And the

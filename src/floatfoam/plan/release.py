@@ -102,12 +102,17 @@ def bulk_courant(case: Case, kind: str) -> float:
     return BULK_COURANT[kind] if value is None else value
 
 
+def check_divisor(divisor) -> None:
+    """A time-step study's divisor (``--dt-divisor``) is a whole number ≥ 1."""
+    if isinstance(divisor, bool) or not isinstance(divisor, int) or divisor < 1:
+        raise InputError(f"--dt-divisor {divisor!r}: valid is a whole number ≥ 1")
+
+
 def smaller_steps(case: Case, divisor: int, kind: str) -> Case:
     """The case with its time-step limits (run.max_delta_t, run.max_courant, as
     :func:`bulk_courant` resolves it in a domain of ``kind``, and run.max_alpha_courant)
     divided by ``divisor``, a whole number ≥ 1."""
-    if isinstance(divisor, bool) or not isinstance(divisor, int) or divisor < 1:
-        raise InputError(f"--dt-divisor {divisor!r}: valid is a whole number ≥ 1")
+    check_divisor(divisor)
     if divisor == 1:
         return case
     from floatfoam.case import with_overrides

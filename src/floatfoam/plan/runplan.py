@@ -17,7 +17,13 @@ from floatfoam.plan import zone
 from floatfoam.plan.kind import kind_of
 from floatfoam.plan.level import level_index
 from floatfoam.plan.morphing import check_morphing, scaled_morphing
-from floatfoam.plan.release import end_time_of, mesh_pose, release_state, smaller_steps
+from floatfoam.plan.release import (
+    check_divisor,
+    end_time_of,
+    mesh_pose,
+    release_state,
+    smaller_steps,
+)
 from floatfoam.plan.stamps import (
     check_interface_gravity_solver,
     check_layered_solver,
@@ -84,6 +90,7 @@ def resolve(case: Case, level: str = "coarse", np_: int = 1, *,
     writes nothing."""
     level_index(level)
     check_morphing(morphing)
+    check_divisor(divisor)
     if solver:
         solver_path(case)  # refused before anything is done when missing
         check_interface_gravity_solver(case)

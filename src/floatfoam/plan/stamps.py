@@ -20,8 +20,9 @@ from floatfoam.tank import Pose
 def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float = 1.0,
                     release: Pose | None = None) -> str:
     """Hash of what a run depends on: the case file, the values it resolves to with the
-    defaults (a changed default makes every run made at the former one another run's) and the
-    mesh motion they resolve to (:func:`_resolved_motion`), the level, the time-step divisor
+    defaults (a changed default makes every run made at the former one another run's), the
+    bulk's Courant limit the mesh's kind resolves to (:func:`floatfoam.plan.release.
+    bulk_courant`) and the mesh motion (:func:`_resolved_motion`), the level, the time-step divisor
     and morphing factor of a study's run, the shared dictionaries, the body's velocity
     condition and the coupling's compensation (:data:`BODY_VELOCITY`, :data:`COMPENSATION`)
     and the solver binary; an STL body's file. Not
@@ -30,7 +31,18 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     finished run look foreign; nor run.end_time, which says only how far the run goes (its
     own is in its info.json: :mod:`floatfoam.foam.extension`). ``release``: the body's pose
     at release when already solved (:func:`floatfoam.plan.release.release_state`)."""
+    from floatfoam.plan.kind import kind_of
+    from floatfoam.plan.release import bulk_courant
+
     stamp = fields.stamped(case.settings)
+    release = _release_pose(case, release)
+    if stamp["run"].get("max_courant") is None and release is not None:
+        # the bulk's limit the mesh's kind resolves to: a run at the default is the run with
+        # that value set in the case
+        try:
+            stamp["run"]["max_courant"] = bulk_courant(case, kind_of(case, release))
+        except InputError:  # refused, as its run is
+            pass
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()
                    if k not in ("title", "description", "extends")}
@@ -59,6 +71,20 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     return digest.hexdigest()[:16]
 
 
+def _release_pose(case: Case, release: Pose | None) -> Pose | None:
+    """The body's pose at release: ``release``, or solved from the case (its equilibrium);
+    None when the case's release or tank is refused (so is its run)."""
+    if release is not None:
+        return release
+    from floatfoam.hydrostatics.theory import equilibrium
+    from floatfoam.plan.release import release_state
+
+    try:
+        return release_state(case, equilibrium(case))["pose"]
+    except InputError:
+        return None
+
+
 def _resolved_motion(case: Case, release: Pose | None) -> list | None:
     """How the run's mesh follows the body once "auto" and the distances' defaults are
     resolved (:func:`floatfoam.plan.zone.of_case`): ["laplacian"], or ["distances", inner,
@@ -67,12 +93,9 @@ def _resolved_motion(case: Case, release: Pose | None) -> list | None:
     release or tank is refused (so is its run)."""
     from floatfoam.plan.kind import kind_of
 
+    if release is None:
+        return None
     try:
-        if release is None:
-            from floatfoam.hydrostatics.theory import equilibrium
-            from floatfoam.plan.release import release_state
-
-            release = release_state(case, equilibrium(case))["pose"]
         mesh = zone.of_case(case, release)
         # a body given by triangles may be found to be of revolution and meshed as a wedge:
         # its run then is not the 3D one made of the same case file
