@@ -93,6 +93,7 @@ def _resolved_motion(case: Case, release: Pose | None) -> list | None:
     release or tank is refused (so is its run)."""
     from floatfoam.plan.kind import kind_of
 
+    release = _release_pose(case, release)
     if release is None:
         return None
     try:
