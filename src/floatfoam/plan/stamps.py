@@ -39,10 +39,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     if stamp["run"].get("max_courant") is None and release is not None:
         # the bulk's limit the mesh's kind resolves to: a run at the default is the run with
         # that value set in the case
-        try:
-            stamp["run"]["max_courant"] = bulk_courant(case, kind_of(case, release))
-        except InputError:  # refused, as its run is
-            pass
+        stamp["run"]["max_courant"] = bulk_courant(case, kind_of(case, release))
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()
                    if k not in ("title", "description", "extends")}
