@@ -303,6 +303,20 @@ def test_the_digest_holds_the_bulk_limit_the_mesh_resolves_to(monkeypatch):
     assert after["ellipsoid_roll"] == before["ellipsoid_roll"]
 
 
+def test_the_digest_holds_the_coupling_iterations_the_mesh_resolves_to(monkeypatch):
+    """The digest holds the coupling's iterations each mesh's kind resolves to: another number
+    in a 3D tank makes its run another run and leaves a section's and a wedge's."""
+    from floatfoam.plan import release as release_module
+
+    names = ("elliptic_cylinder", "sphere", "ellipsoid_roll")
+    before = {name: settings_digest(load_case(name), "coarse") for name in names}
+    monkeypatch.setitem(release_module.OUTER_CORRECTORS, "3d-half", 3)
+    after = {name: settings_digest(load_case(name), "coarse") for name in names}
+    assert after["ellipsoid_roll"] != before["ellipsoid_roll"]
+    assert after["sphere"] == before["sphere"]
+    assert after["elliptic_cylinder"] == before["elliptic_cylinder"]
+
+
 def test_a_setting_added_later_leaves_the_runs_before_it():
     """A field marked ``added`` (mesh.gmsh.layers_height_3d and run.motion_diffusivity) is
     out of the stamp at its default, written out or not, and one at its ``inert`` value (0
