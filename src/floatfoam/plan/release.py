@@ -109,13 +109,22 @@ def bulk_courant(case: Case, kind: str) -> float:
 # (docs/studies/cases/stl_pontoon.md); 3 on a section's and a wedge's mesh, where two move
 # cylinder_heave's period by 0.5 % (docs/studies/section-cost.md)
 OUTER_CORRECTORS = {"2d": 3, "ogrid": 3, "wedge": 3, "3d": 2, "3d-half": 2}
+# ... and 3 on any mesh for a release that turns the body over (plan.zone.turns_over): with two,
+# ellipsoid_printed_verdict's time step collapsed at 183° of its turn, with three it swings
+# on to 248° (docs/studies/cases/stl_pontoon.md)
+TURNING_OVER_CORRECTORS = 3
 
 
 def outer_correctors(case: Case, kind: str) -> int:
     """The body–fluid coupling's iterations a time step of a run of ``case`` in a domain of
-    ``kind``: ``run.outer_correctors``, or :data:`OUTER_CORRECTORS`' for the kind."""
+    ``kind``: ``run.outer_correctors``, or :data:`TURNING_OVER_CORRECTORS` for a release that
+    turns the body over, or :data:`OUTER_CORRECTORS`' for the kind."""
     value = case.settings.run.outer_correctors
-    return OUTER_CORRECTORS[kind] if value is None else value
+    if value is not None:
+        return value
+    from floatfoam.plan.zone import turns_over
+
+    return TURNING_OVER_CORRECTORS if turns_over(case) else OUTER_CORRECTORS[kind]
 
 
 def check_divisor(divisor) -> None:
