@@ -111,7 +111,7 @@ def bulk_courant(case: Case, kind: str) -> float:
 OUTER_CORRECTORS = {"2d": 3, "ogrid": 3, "wedge": 3, "3d": 2, "3d-half": 2}
 # ... and 3 on any mesh for a release that turns the body over (plan.zone.turns_over): with two,
 # ellipsoid_printed_verdict's time step collapsed at 183° of its turn, with three it swings
-# on to 248° (docs/studies/cases/stl_pontoon.md)
+# on past 240° (docs/studies/cases/stl_pontoon.md)
 TURNING_OVER_CORRECTORS = 3
 
 
