@@ -114,7 +114,8 @@ def accuracy(case, run: Path) -> dict:
     try:
         _, _, result = analyse_run(run / "motion.csv", dof)
     except (InputError, ValueError) as error:  # a record too short for a decay fit
-        return {"dof": dof, "period": None, "damping_ratio": None, "note": str(error)}
+        return {"dof": dof, "period": None, "damping_ratio": None, "converged_period": None,
+                "reference_period": None, "note": str(error)}
     fitted = decay_dict(result)
     out = {"dof": dof, "period": fitted["period_mean"], "damping_ratio": fitted["damping_ratio"]}
     study, _ = current_study(case)

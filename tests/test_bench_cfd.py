@@ -41,3 +41,27 @@ def test_baseline_tree_holds_the_revision_and_shares_the_solver(tmp_path, monkey
     assert (tree / "build" / "solver").resolve() == (ROOT / "build" / "solver").resolve()
     (tree / "marker").touch()  # made once: a second call keeps the folder as it is
     assert bench.baseline_tree("HEAD") == tree and (tree / "marker").is_file()
+
+
+def test_a_record_too_short_for_a_fit_prints_its_row(tmp_path):
+    """A short benchmark record (stl_pontoon's 0.2 s, a quarter of a roll period) has no decay
+    fit: its row prints its wall and steps with "—" for the period and its errors, beside the
+    baseline's, instead of stopping the benchmark after its runs."""
+    from floatfoam.case import load_case
+
+    bench = _bench()
+    case = load_case("stl_pontoon", ["run.end_time=0.2"])
+    t = [0.002 * k for k in range(101)]  # 0.2 s of the first swing down from 8°
+    rows = ["time,x,y,z,roll,pitch,yaw,u,v,w,p,q,r"]
+    rows += [f"{s},0,0,-0.008,{8.0 - 2.5 * (s / 0.1) ** 2},0,0,0,0,0,0,0,0" for s in t]
+    (tmp_path / "motion.csv").write_text("\n".join(rows) + "\n")
+    found = bench.accuracy(case, tmp_path)
+    assert found["period"] is None and found["converged_period"] is None
+    row = {"case": "stl_pontoon", "level": "coarse", "ranks": 2, "mesh": "3d-half",
+           "cells": 86539, "steps": 82, "wall_s": 101.0, "wall_per_simulated_s": 505.0,
+           "record_s": 3.6, **found}
+    line = bench._line(row)
+    assert line.split()[:6] == ["stl_pontoon", "coarse", "2", "3d-half", "86539", "82"]
+    assert line.count("—") == 4  # T_d, ζ and both errors
+    row["baseline"] = {"wall_s": 150.0, "steps": 120, **found}
+    assert bench._baseline_line(row).split()[4] == f"{101.0 / 150.0:.2f}"
