@@ -102,17 +102,9 @@ class RunSettings:
     acceleration_relaxation: float = spec(1.0, minimum=0.0, maximum=1.0,
                                            doc="r: each body acceleration = r·new + "
                                            "(1 − r)·previous, in every coupling iteration")
-    # 3 on a 2D section's mesh and on a wedge, 2 in a 3D tank (floatfoam.plan.release.
-    # OUTER_CORRECTORS): there a third moves stl_pontoon's first 2.5 cycles by 0.03 % in period
-    # and the 3D sphere's first crest by 0.1 ms, for half again the wall; but 3 for a release
-    # that turns the body over, whose turn in 3D two do not carry through
-    # (docs/studies/cases/stl_pontoon.md); on a section two move cylinder_heave's period by
-    # 0.5 % (docs/studies/section-cost.md)
-    outer_correctors: int | None = spec(None, kind=int, minimum=1, closed=True, maximum=20,
-                                        doc="body–fluid coupling iterations per time step "
-                                        "(PIMPLE's nOuterCorrectors); by default 3 on a 2D "
-                                        "section's mesh and on a wedge, 2 in a 3D tank (3 "
-                                        "for a release that turns the body over)")
+    outer_correctors: int = spec(3, kind=int, minimum=1, closed=True, maximum=20,
+                                 doc="body–fluid coupling iterations per time step (PIMPLE's "
+                                 "nOuterCorrectors)")
     mesh_motion: str = spec("auto", kind=str, doc="how the mesh follows the body: "
                              "layered (rows of points that move with the body by their height "
                              "alone: a body free in heave alone), "

@@ -303,30 +303,6 @@ def test_the_digest_holds_the_bulk_limit_the_mesh_resolves_to(monkeypatch):
     assert after["ellipsoid_roll"] == before["ellipsoid_roll"]
 
 
-@pytest.mark.parametrize("change, moved", [
-    ({"3d-half": 3}, {"ellipsoid_roll"}),  # a 3D tank's number
-    ({"2d": 2}, {"elliptic_cylinder"}),  # a section's
-    ({"wedge": 2}, {"sphere"}),
-    (4, {"ellipsoid_printed_verdict"}),  # a release that turns the body over
-])
-def test_the_digest_holds_the_coupling_iterations_the_mesh_resolves_to(monkeypatch, change,
-                                                                         moved):
-    """The digest holds the coupling's iterations each run resolves to (by the mesh's kind,
-    or for a release that turns the body over): another number makes the runs that take it
-    other runs and leaves the rest."""
-    from floatfoam.plan import release as release_module
-
-    names = ("elliptic_cylinder", "sphere", "ellipsoid_roll", "ellipsoid_printed_verdict")
-    before = {name: settings_digest(load_case(name), "coarse") for name in names}
-    if isinstance(change, dict):
-        for kind, number in change.items():
-            monkeypatch.setitem(release_module.OUTER_CORRECTORS, kind, number)
-    else:
-        monkeypatch.setattr(release_module, "TURNING_OVER_CORRECTORS", change)
-    after = {name: settings_digest(load_case(name), "coarse") for name in names}
-    assert {name for name in names if after[name] != before[name]} == moved
-
-
 def test_a_setting_added_later_leaves_the_runs_before_it():
     """A field marked ``added`` (mesh.gmsh.layers_height_3d and run.motion_diffusivity) is
     out of the stamp at its default, written out or not, and one at its ``inert`` value (0

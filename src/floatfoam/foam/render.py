@@ -23,7 +23,7 @@ from floatfoam.foam.domain import RunMesh
 from floatfoam.foam.patches import write_initial_fields
 from floatfoam.layout import COMMON_DIR
 from floatfoam.plan.record import RunRecord
-from floatfoam.plan.release import bulk_courant, outer_correctors
+from floatfoam.plan.release import bulk_courant
 from floatfoam.plan.runplan import RunPlan
 from floatfoam.plan.stamps import COMPENSATION, has_body_velocity, solver_has
 from floatfoam.plan.zone import LAYERED_SOLVER, free_names, heave_only
@@ -158,7 +158,7 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
     control["maxAlphaCo"] = min(run.max_alpha_courant, bulk)
     control["maxDeltaT"] = run.max_delta_t / mesh.factor
     pimple = FoamFile(run_dir / "system" / "fvSolution")["PIMPLE"]
-    pimple["nOuterCorrectors"] = 1 if run.static_body else outer_correctors(case, mesh.kind)
+    pimple["nOuterCorrectors"] = 1 if run.static_body else run.outer_correctors
     pimple["interfaceGravity"] = run.interface_gravity
     if run.static_body:
         pimple["correctPhi"] = False

@@ -102,31 +102,6 @@ def bulk_courant(case: Case, kind: str) -> float:
     return BULK_COURANT[kind] if value is None else value
 
 
-# the body–fluid coupling's iterations a step (PIMPLE's nOuterCorrectors) by the mesh's kind
-# where the case sets no run.outer_correctors: 2 in a 3D tank, where each iteration moves the
-# tetrahedral mesh and a third moves stl_pontoon's first 2.5 cycles by 0.03 % in period, its
-# late cycles below 2° no more than they differ from run to run
-# (docs/studies/cases/stl_pontoon.md); 3 on a section's and a wedge's mesh, where two move
-# cylinder_heave's period by 0.5 % (docs/studies/section-cost.md)
-OUTER_CORRECTORS = {"2d": 3, "ogrid": 3, "wedge": 3, "3d": 2, "3d-half": 2}
-# ... and 3 on any mesh for a release that turns the body over (plan.zone.turns_over): with two,
-# ellipsoid_printed_verdict's time step collapsed at 183° of its turn, with three it swings
-# on past 240° (docs/studies/cases/stl_pontoon.md)
-TURNING_OVER_CORRECTORS = 3
-
-
-def outer_correctors(case: Case, kind: str) -> int:
-    """The body–fluid coupling's iterations a time step of a run of ``case`` in a domain of
-    ``kind``: ``run.outer_correctors``, or :data:`TURNING_OVER_CORRECTORS` for a release that
-    turns the body over, or :data:`OUTER_CORRECTORS`' for the kind."""
-    value = case.settings.run.outer_correctors
-    if value is not None:
-        return value
-    from floatfoam.plan.zone import turns_over
-
-    return TURNING_OVER_CORRECTORS if turns_over(case) else OUTER_CORRECTORS[kind]
-
-
 def check_divisor(divisor) -> None:
     """A time-step study's divisor (``--dt-divisor``) is a whole number ≥ 1."""
     if isinstance(divisor, bool) or not isinstance(divisor, int) or divisor < 1:
