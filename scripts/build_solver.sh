@@ -145,16 +145,37 @@ if [ "$(cat "$APP/UEqn.H" "$APP/pEqn.H" | grep -c 'ghInterface\*fvc::snGrad(rho)
   echo "build_solver: interFoam's gravity term is not where the edit expects it" >&2
   exit 1
 fi
+# The coupling's iterations end when the body's motion has converged (src/solver/
+# couplingConvergence.H, PIMPLE's `couplingTolerance`): the mesh's motion in the PIMPLE loop is
+# bracketed by the two calls that follow the body's velocities.
+sed -i '/#include "interfaceGravity.H"/a\
+#include "couplingConvergence.H"' "$APP/interFoam.C"
+sed -i -e 's/^\( *\)mesh.update();$/\1floatfoamCoupling.before(mesh, pimple);\
+\1mesh.update();\
+\1floatfoamCoupling.after(mesh, pimple);/' \
+  -e '/Starting time loop/i\
+    Foam::floatfoamCouplingConvergence floatfoamCoupling;\
+' -e '/Info<< "End\\n" << endl;/i\
+    floatfoamCoupling.report(pimple);\
+' "$APP/interFoam.C"
+if [ "$(grep -c 'floatfoamCoupling\.' "$APP/interFoam.C")" != 3 ] ||
+   [ "$(grep -c 'couplingConvergence.H' "$APP/interFoam.C")" != 1 ] ||
+   [ "$(grep -c 'floatfoamCouplingConvergence floatfoamCoupling;' "$APP/interFoam.C")" != 1 ]
+then
+  echo "build_solver: interFoam's mesh motion is not where the edit expects it" >&2
+  exit 1
+fi
 OBJECT_ID="$FLAGS $(cat "$VOF"/*.H "$APP"/*.[CH] src/solver/*.H | sha256sum | cut -c1-16)"
 OFLAGS=$OUT/.interFoam.o.flags  # the flags and the VoF/ interFoam.o was compiled with
 if [ ! -f "$OUT/interFoam.o" ] || [ "$(cat "$OFLAGS" 2>/dev/null)" != "$OBJECT_ID" ]; then
   app=$(realpath "$APP")
   own=$(realpath src/solver)
+  body=$(realpath "$BODY")
   vof=$(realpath "$VOF")
   echo "build_solver: compiling interFoam with -fno-tree-vectorize (about a minute)"
   # shellcheck disable=SC2086  # word splitting of the flag lists is intended
-  (cd "$app" && g++ $FLAGS -I. -I"$vof" -I"$own" -I"$S/transportModels" $includes -c interFoam.C \
-     -o "$(realpath -m "$OLDPWD/$OUT/interFoam.o.tmp")")
+  (cd "$app" && g++ $FLAGS -I. -I"$vof" -I"$own" -I"$body" -I"$S/transportModels" $includes \
+     -c interFoam.C -o "$(realpath -m "$OLDPWD/$OUT/interFoam.o.tmp")")
   mv -f "$OUT/interFoam.o.tmp" "$OUT/interFoam.o" && echo "$OBJECT_ID" > "$OFLAGS"
 fi
 objects=("$OUT/interFoam.o")

@@ -105,6 +105,18 @@ class RunSettings:
     outer_correctors: int = spec(3, kind=int, minimum=1, closed=True, maximum=20,
                                  doc="body–fluid coupling iterations per time step (PIMPLE's "
                                  "nOuterCorrectors)")
+    # 0 on a 2D section's mesh and on a wedge, 0.01 in a 3D tank (floatfoam.plan.release.
+    # COUPLING_TOLERANCE): there each iteration costs a third of a step and most steps end
+    # after two (docs/coupling.md)
+    coupling_tolerance: float | None = spec(None, minimum=0.0, closed=True, added=True,
+                                            doc="ε: a step's coupling iterations end after the "
+                                            "second, or a later one, when the next one's change "
+                                            "of the body's velocity and angular velocity, "
+                                            "estimated from the iterations' contraction, is at "
+                                            "most ε × their change over the step "
+                                            "(src/solver/couplingConvergence.H); 0: always "
+                                            "outer_correctors; by default 0 on a 2D section's "
+                                            "mesh and on a wedge, 0.01 in a 3D tank")
     mesh_motion: str = spec("auto", kind=str, doc="how the mesh follows the body: "
                              "layered (rows of points that move with the body by their height "
                              "alone: a body free in heave alone), "

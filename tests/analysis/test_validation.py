@@ -303,6 +303,28 @@ def test_the_digest_holds_the_bulk_limit_the_mesh_resolves_to(monkeypatch):
     assert after["ellipsoid_roll"] == before["ellipsoid_roll"]
 
 
+def test_the_digest_holds_the_coupling_tolerance_the_mesh_resolves_to(monkeypatch):
+    """The digest holds the coupling's tolerance a run resolves to, and leaves it out where it
+    is 0 (the iterations' fixed count): a section's run at the default is its run with 0 set,
+    another tolerance another run; a 3D tank's default is another run than 0 set, and is that
+    run when the kind's default is 0."""
+    from floatfoam.plan import release as release_module
+
+    def digest(name, *overrides):
+        return settings_digest(load_case(name, list(overrides)), "coarse")
+
+    section = "elliptic_cylinder"
+    assert digest(section) == digest(section, "run.coupling_tolerance=0")
+    assert digest(section) != digest(section, "run.coupling_tolerance=0.02")
+    tank, zero = "ellipsoid_roll", "run.coupling_tolerance=0"
+    before = digest(tank)
+    assert before != digest(tank, zero)
+    monkeypatch.setitem(release_module.COUPLING_TOLERANCE, "3d-half", 0.02)
+    assert digest(tank) not in (before, digest(tank, zero))
+    monkeypatch.setitem(release_module.COUPLING_TOLERANCE, "3d-half", 0.0)
+    assert digest(tank) == digest(tank, zero)
+
+
 def test_a_setting_added_later_leaves_the_runs_before_it():
     """A field marked ``added`` (mesh.gmsh.layers_height_3d and run.motion_diffusivity) is
     out of the stamp at its default, written out or not, and one at its ``inert`` value (0

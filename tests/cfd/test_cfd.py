@@ -186,6 +186,33 @@ def test_still_water_across_tilted_cells_with_the_gravity_at_the_surface(tmp_pat
         assert interface > 20e-3 and below > 2e-4
 
 
+# the small O-grid's first 0.2 s, one rank: ~3 s of solver a run
+COUPLED_RUN = ["run.end_time=0.2", *SMALL_OGRID_SETTINGS]
+
+
+def test_the_coupling_ends_when_the_body_has_converged(tmp_path):
+    """run.coupling_tolerance r (src/solver/couplingConvergence.H): a step's coupling
+    iterations end after the second when it moved the body's velocity by at most r × its
+    change over the step, that iteration on the final one's solvers. At an r every step meets
+    the run is the run of two iterations to the last digit, and the log counts every step as
+    converged; at 0 (a 2D section's default) it is the run of three, which differs."""
+    runs = {}
+    for name, extra in {"tolerance": ["run.coupling_tolerance=1000"],
+                        "two": ["run.outer_correctors=2"], "three": []}.items():
+        case = load_case("cylinder_heave", [*COUPLED_RUN, *extra])
+        result = run_case(case, "coarse", 1, build_dir=tmp_path / name)
+        runs[name] = (read_motion(result.motion_csv),
+                      (result.run_dir / "log.interFoam").read_text())
+    motion, log = runs["tolerance"]
+    steps = log.count("\nTime = ")
+    assert steps > 20 and f"Coupling: {steps} of {steps} steps converged" in log
+    assert log.count("PIMPLE: converged in 2 iterations") == steps
+    for column in ("time", "z"):
+        np.testing.assert_array_equal(motion[column], runs["two"][0][column])
+    assert "Coupling:" not in runs["three"][1]
+    assert not np.array_equal(runs["three"][0]["z"], runs["two"][0]["z"])
+
+
 def test_divergence_detector_stops_a_broken_run(tmp_path):
     """Debian's stock interFoam (miscompiled fvc::reconstruct, docs/openfoam-v1912.md)
     blows up on the O-grid within a few dozen steps: the driver stops it with one line that

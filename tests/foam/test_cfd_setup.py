@@ -394,6 +394,30 @@ def test_outer_correctors_reach_fvsolution(tmp_path, overrides, outer):
     assert FoamFile(tmp_path / "system" / "fvSolution")["PIMPLE"]["nOuterCorrectors"] == outer
 
 
+@pytest.mark.parametrize("name, overrides, tolerance", [
+    ("box_bilge", [], 0.0),  # a 2D section's (release.COUPLING_TOLERANCE)
+    ("sphere", [], 0.0),  # a wedge's
+    ("stl_pontoon", [], 0.01),  # a 3D tank's
+    ("box_bilge", ["run.coupling_tolerance=0.05"], 0.05),
+    ("stl_pontoon", ["run.coupling_tolerance=0"], 0.0),  # set, in 3D
+    ("stl_pontoon", ["run.static_body=true"], 0.0),
+])
+def test_coupling_tolerance_reaches_fvsolution(tmp_path, name, overrides, tolerance):
+    """run.coupling_tolerance is PIMPLE's couplingTolerance (src/solver/couplingConvergence.H):
+    by default 0 on a section's and a wedge's mesh, 0.01 in a 3D tank; 0 for a static body."""
+    import shutil
+
+    from foamlib import FoamFile
+
+    from floatfoam.layout import COMMON_DIR
+
+    shutil.copytree(COMMON_DIR / "system", tmp_path / "system")
+    case, _, mesh = planned(name, overrides)
+    render._control(case, tmp_path, mesh, 1.0)
+    pimple = FoamFile(tmp_path / "system" / "fvSolution")["PIMPLE"]
+    assert pimple["couplingTolerance"] == pytest.approx(tolerance, abs=0)
+
+
 @pytest.mark.parametrize("name, key, scheme, entry, written", [
     ("box_bilge", "time_scheme", None, "default", "Euler"),
     ("box_bilge", "time_scheme", "Euler", "default", "Euler"),

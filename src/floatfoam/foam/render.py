@@ -23,7 +23,7 @@ from floatfoam.foam.domain import RunMesh
 from floatfoam.foam.patches import write_initial_fields
 from floatfoam.layout import COMMON_DIR
 from floatfoam.plan.record import RunRecord
-from floatfoam.plan.release import bulk_courant
+from floatfoam.plan.release import bulk_courant, coupling_tolerance
 from floatfoam.plan.runplan import RunPlan
 from floatfoam.plan.stamps import COMPENSATION, has_body_velocity, solver_has
 from floatfoam.plan.zone import LAYERED_SOLVER, free_names, heave_only
@@ -159,6 +159,7 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
     control["maxDeltaT"] = run.max_delta_t / mesh.factor
     pimple = FoamFile(run_dir / "system" / "fvSolution")["PIMPLE"]
     pimple["nOuterCorrectors"] = 1 if run.static_body else run.outer_correctors
+    pimple["couplingTolerance"] = 0.0 if run.static_body else coupling_tolerance(case, mesh.kind)
     pimple["interfaceGravity"] = run.interface_gravity
     if run.static_body:
         pimple["correctPhi"] = False

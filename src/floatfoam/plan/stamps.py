@@ -21,25 +21,32 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
                     release: Pose | None = None) -> str:
     """Hash of what a run depends on: the case file, the values it resolves to with the
     defaults (a changed default makes every run made at the former one another run's), the
-    bulk's Courant limit the mesh's kind resolves to (:func:`floatfoam.plan.release.
-    bulk_courant`) and the mesh motion (:func:`_resolved_motion`), the level, the time-step divisor
-    and morphing factor of a study's run, the shared dictionaries, the body's velocity
-    condition and the coupling's compensation (:data:`BODY_VELOCITY`, :data:`COMPENSATION`)
-    and the solver binary; an STL body's file. Not
+    bulk's Courant limit and the coupling's tolerance the mesh's kind resolves to
+    (:func:`floatfoam.plan.release.bulk_courant`, :func:`~floatfoam.plan.release.
+    coupling_tolerance`) and the mesh motion (:func:`_resolved_motion`), the level, the
+    time-step divisor and morphing factor of a study's run, the shared dictionaries, the
+    body's velocity condition and the coupling's compensation (:data:`BODY_VELOCITY`,
+    :data:`COMPENSATION`) and the solver binary; an STL body's file. Not
     the case's words ([case] title, description, and the name of the case it extends: its
     tables are in), nor its [reference] measurements: adding a measurement must not make a
     finished run look foreign; nor run.end_time, which says only how far the run goes (its
     own is in its info.json: :mod:`floatfoam.foam.extension`). ``release``: the body's pose
     at release when already solved (:func:`floatfoam.plan.release.release_state`)."""
     from floatfoam.plan.kind import kind_of
-    from floatfoam.plan.release import bulk_courant
+    from floatfoam.plan.release import bulk_courant, coupling_tolerance
 
     stamp = fields.stamped(case.settings)
     release = _release_pose(case, release)
-    if stamp["run"].get("max_courant") is None and release is not None:
-        # the bulk's limit the mesh's kind resolves to: a run at the default is the run with
-        # that value set in the case
-        stamp["run"]["max_courant"] = bulk_courant(case, kind_of(case, release))
+    if release is not None:
+        # the values the mesh's kind resolves to: a run at the defaults is the run with those
+        # values set in the case; a tolerance of 0 (the iterations' fixed count) is left out
+        kind = kind_of(case, release)
+        if stamp["run"].get("max_courant") is None:
+            stamp["run"]["max_courant"] = bulk_courant(case, kind)
+        stamp["run"].pop("coupling_tolerance", None)
+        tolerance = coupling_tolerance(case, kind)
+        if tolerance:
+            stamp["run"]["coupling_tolerance"] = tolerance
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
     raw["case"] = {k: v for k, v in raw.get("case", {}).items()
                    if k not in ("title", "description", "extends")}
