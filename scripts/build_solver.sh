@@ -12,8 +12,9 @@
 # addedMassCompensation, docs/coupling.md) is compiled with the same
 # flags and linked into the same executable, so that every run of floatfoam's interFoam has it
 # without a library to find at run time; src/solver/interfaceGravity.H (the gravity term at the
-# free surface's height, PIMPLE's interfaceGravity: docs/studies/interface-gravity.md) is
-# compiled into interFoam.C itself.
+# free surface's height, PIMPLE's interfaceGravity: docs/studies/interface-gravity.md) and
+# src/solver/couplingConvergence.H (the coupling's iterations ended when the body's motion has
+# converged, PIMPLE's couplingTolerance: docs/coupling.md) are compiled into interFoam.C itself.
 #
 # Output: build/solver/bin/interFoam. Idempotent: does nothing when the binary is there and
 # was built from the same flags and sources (src/solver/); a change to those sources alone
@@ -110,7 +111,8 @@ if [ "$(grep -c 'mesh.phi().oldTime() - mesh.phi()' "$VOF/alphaEqn.H")" != 1 ] |
 fi
 # floatfoam's bodyVelocity (src/solver/) takes the body's velocity from the Laplacian's
 # point-displacement condition, whose six-DoF motion v1912 keeps private: it is compiled again
-# from Debian's source under the name bodySixDoFRigidBodyDisplacement, with an accessor.
+# from Debian's source under the name bodySixDoFRigidBodyDisplacement, with an accessor (which
+# src/solver/couplingConvergence.H, compiled into interFoam.C, reads too).
 PPF=$SRC/src/sixDoFRigidBodyMotion/pointPatchFields/derived/sixDoFRigidBodyDisplacement
 BODY=$OUT/bodyDisplacement
 rm -rf "$BODY" && mkdir -p "$BODY"
@@ -165,7 +167,8 @@ then
   echo "build_solver: interFoam's mesh motion is not where the edit expects it" >&2
   exit 1
 fi
-OBJECT_ID="$FLAGS $(cat "$VOF"/*.H "$APP"/*.[CH] src/solver/*.H | sha256sum | cut -c1-16)"
+OBJECT_ID="$FLAGS $(cat "$VOF"/*.H "$APP"/*.[CH] "$BODY"/*.H src/solver/*.H | sha256sum |
+  cut -c1-16)"
 OFLAGS=$OUT/.interFoam.o.flags  # the flags and the VoF/ interFoam.o was compiled with
 if [ ! -f "$OUT/interFoam.o" ] || [ "$(cat "$OFLAGS" 2>/dev/null)" != "$OBJECT_ID" ]; then
   app=$(realpath "$APP")

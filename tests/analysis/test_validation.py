@@ -305,9 +305,9 @@ def test_the_digest_holds_the_bulk_limit_the_mesh_resolves_to(monkeypatch):
 
 def test_the_digest_holds_the_coupling_tolerance_the_mesh_resolves_to(monkeypatch):
     """The digest holds the coupling's tolerance a run resolves to, and leaves it out where it
-    is 0 (the iterations' fixed count): a section's run at the default is its run with 0 set,
-    another tolerance another run; a 3D tank's default is another run than 0 set, and is that
-    run when the kind's default is 0."""
+    is 0 (the iterations' fixed count, a body held still): a section's run at the default is its
+    run with 0 set, another tolerance another run; a 3D tank's default is the run with its
+    value set, another run than 0 set, and that run when the kind's default is 0."""
     from floatfoam.plan import release as release_module
 
     def digest(name, *overrides):
@@ -319,6 +319,9 @@ def test_the_digest_holds_the_coupling_tolerance_the_mesh_resolves_to(monkeypatc
     tank, zero = "ellipsoid_roll", "run.coupling_tolerance=0"
     before = digest(tank)
     assert before != digest(tank, zero)
+    assert before == digest(tank, "run.coupling_tolerance=0.01")  # its kind's default, set
+    held = ("run.static_body=true", "run.end_time=0.1")  # a body held still iterates once
+    assert digest(tank, *held) == digest(tank, *held, zero)
     monkeypatch.setitem(release_module.COUPLING_TOLERANCE, "3d-half", 0.02)
     assert digest(tank) not in (before, digest(tank, zero))
     monkeypatch.setitem(release_module.COUPLING_TOLERANCE, "3d-half", 0.0)

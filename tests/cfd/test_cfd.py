@@ -191,11 +191,12 @@ COUPLED_RUN = ["run.end_time=0.2", *SMALL_OGRID_SETTINGS]
 
 
 def test_the_coupling_ends_when_the_body_has_converged(tmp_path):
-    """run.coupling_tolerance r (src/solver/couplingConvergence.H): a step's coupling
-    iterations end after the second when it moved the body's velocity by at most r × its
-    change over the step, that iteration on the final one's solvers. At an r every step meets
-    the run is the run of two iterations to the last digit, and the log counts every step as
-    converged; at 0 (a 2D section's default) it is the run of three, which differs."""
+    """run.coupling_tolerance ε (src/solver/couplingConvergence.H): a step's coupling
+    iterations end after the second when the contraction ρ times its change of the body's
+    velocity is at most ε × the velocity's change over the step, that iteration solved as the
+    final one. At an ε every step meets the run is the run of two iterations to the last digit,
+    and the log counts every step as converged; at 0 (a 2D section's default) it is the run of
+    three, which differs."""
     runs = {}
     for name, extra in {"tolerance": ["run.coupling_tolerance=1000"],
                         "two": ["run.outer_correctors=2"], "three": []}.items():

@@ -104,7 +104,7 @@ def bulk_courant(case: Case, kind: str) -> float:
 
 # the coupling's tolerance by the mesh's kind where the case sets no run.coupling_tolerance:
 # 0.01 in a 3D tank, where each iteration moves the tetrahedral mesh and costs a third of a step
-# and 91 % of stl_pontoon's steps end after two, its first 2.5 cycles' period within 0.06 % of
+# and 91 % of stl_pontoon's steps end after two, its first 2.5 cycles' period within 0.07 % of
 # three iterations' (docs/studies/cases/stl_pontoon.md); 0 on a section's and a wedge's mesh,
 # whose records are made at the three iterations of run.outer_correctors
 COUPLING_TOLERANCE = {"2d": 0.0, "ogrid": 0.0, "wedge": 0.0, "3d": 0.01, "3d-half": 0.01}

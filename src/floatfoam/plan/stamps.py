@@ -38,13 +38,13 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
     stamp = fields.stamped(case.settings)
     release = _release_pose(case, release)
     if release is not None:
-        # the values the mesh's kind resolves to: a run at the defaults is the run with those
-        # values set in the case; a tolerance of 0 (the iterations' fixed count) is left out
+        # the values the mesh's kind resolves to; a tolerance of 0 (the iterations' fixed
+        # count, and a body held still's) is left out
         kind = kind_of(case, release)
         if stamp["run"].get("max_courant") is None:
             stamp["run"]["max_courant"] = bulk_courant(case, kind)
         stamp["run"].pop("coupling_tolerance", None)
-        tolerance = coupling_tolerance(case, kind)
+        tolerance = 0.0 if case.settings.run.static_body else coupling_tolerance(case, kind)
         if tolerance:
             stamp["run"]["coupling_tolerance"] = tolerance
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
@@ -57,6 +57,13 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
                 raw[table] = kept
             else:  # emptied by it: as if never written
                 del raw[table]
+    run_table = raw.get("run")
+    if isinstance(run_table, dict) and "coupling_tolerance" in run_table:
+        # the tolerance resolved is in the stamp: a case that sets its kind's default is the
+        # run at the default
+        del run_table["coupling_tolerance"]
+        if not run_table:
+            del raw["run"]
     resolved = {"settings": stamp, "release": case.release,
                 "mass": case.mass, "cog": case.cog, "gyradius": case.gyradius, "rho": case.rho,
                 "nu": case.nu, "g": case.g, "depth": case.depth, "rho_air": case.rho_air,
