@@ -12,11 +12,9 @@
 \*---------------------------------------------------------------------------*/
 
 #include "fixedValueFvPatchFields.H"
-#include "sixDoFRigidBodyMotionSolver.H"
 #include "addToRunTimeSelectionTable.H"
 #include "volFields.H"
-#include "pointFields.H"
-#include "bodySixDoFRigidBodyDisplacementPointPatchVectorField.H"
+#include "bodyMotion.H"
 
 namespace Foam
 {
@@ -29,32 +27,16 @@ class bodyVelocityFvPatchVectorField
     //  point-displacement condition's
     const sixDoFRigidBodyMotion& bodyMotion() const
     {
-        const fvMesh& mesh = internalField().mesh();
-        const sixDoFRigidBodyMotionSolver* solver =
-            mesh.findObject<sixDoFRigidBodyMotionSolver>("dynamicMeshDict");
-        if (solver)
+        const sixDoFRigidBodyMotion* motion =
+            floatfoamBodyMotion(internalField().mesh(), patch().index());
+        if (!motion)
         {
-            return solver->motion();
+            FatalErrorInFunction
+                << "bodyVelocity on patch " << patch().name() << " needs a six-DoF motion solver"
+                << " in dynamicMeshDict or the point displacement bodySixDoFRigidBodyDisplacement"
+                << " on the patch" << exit(FatalError);
         }
-        const pointVectorField* displacement =
-            mesh.findObject<pointVectorField>("pointDisplacement");
-        if (displacement)
-        {
-            const bodySixDoFRigidBodyDisplacementPointPatchVectorField* body =
-                dynamic_cast<const bodySixDoFRigidBodyDisplacementPointPatchVectorField*>
-                (
-                    &displacement->boundaryField()[patch().index()]
-                );
-            if (body)
-            {
-                return body->motion();
-            }
-        }
-        FatalErrorInFunction
-            << "bodyVelocity on patch " << patch().name() << " needs a six-DoF motion solver"
-            << " in dynamicMeshDict or the point displacement bodySixDoFRigidBodyDisplacement"
-            << " on the patch" << exit(FatalError);
-        return solver->motion();
+        return *motion;
     }
 
 public:

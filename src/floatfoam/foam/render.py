@@ -159,7 +159,7 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
     control["maxDeltaT"] = run.max_delta_t / mesh.factor
     pimple = FoamFile(run_dir / "system" / "fvSolution")["PIMPLE"]
     pimple["nOuterCorrectors"] = 1 if run.static_body else run.outer_correctors
-    pimple["couplingTolerance"] = 0.0 if run.static_body else coupling_tolerance(case, mesh.kind)
+    pimple["couplingTolerance"] = coupling_tolerance(case, mesh.kind)
     pimple["interfaceGravity"] = run.interface_gravity
     if run.static_body:
         pimple["correctPhi"] = False

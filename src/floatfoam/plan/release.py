@@ -113,9 +113,11 @@ COUPLING_TOLERANCE = {"2d": 0.0, "ogrid": 0.0, "wedge": 0.0, "3d": 0.01, "3d-hal
 def coupling_tolerance(case: Case, kind: str) -> float:
     """The coupling's tolerance of a run of ``case`` in a domain of ``kind`` (PIMPLE's
     ``couplingTolerance``, src/solver/couplingConvergence.H): ``run.coupling_tolerance``, or
-    :data:`COUPLING_TOLERANCE`'s for the kind."""
-    value = case.settings.run.coupling_tolerance
-    return COUPLING_TOLERANCE[kind] if value is None else value
+    :data:`COUPLING_TOLERANCE`'s for the kind; 0 for a body held still (one iteration)."""
+    run = case.settings.run
+    if run.static_body:
+        return 0.0
+    return COUPLING_TOLERANCE[kind] if run.coupling_tolerance is None else run.coupling_tolerance
 
 
 def check_divisor(divisor) -> None:

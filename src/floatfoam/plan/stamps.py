@@ -44,7 +44,7 @@ def settings_digest(case: Case, level: str, *, divisor: int = 1, morphing: float
         if stamp["run"].get("max_courant") is None:
             stamp["run"]["max_courant"] = bulk_courant(case, kind)
         stamp["run"].pop("coupling_tolerance", None)
-        tolerance = 0.0 if case.settings.run.static_body else coupling_tolerance(case, kind)
+        tolerance = coupling_tolerance(case, kind)
         if tolerance:
             stamp["run"]["coupling_tolerance"] = tolerance
     raw = {table: values for table, values in case.raw.items() if table != "reference"}
