@@ -111,8 +111,8 @@ if [ "$(grep -c 'mesh.phi().oldTime() - mesh.phi()' "$VOF/alphaEqn.H")" != 1 ] |
 fi
 # floatfoam's bodyVelocity (src/solver/) takes the body's velocity from the Laplacian's
 # point-displacement condition, whose six-DoF motion v1912 keeps private: it is compiled again
-# from Debian's source under the name bodySixDoFRigidBodyDisplacement, with an accessor (which
-# src/solver/couplingConvergence.H, compiled into interFoam.C, reads too).
+# from Debian's source under the name bodySixDoFRigidBodyDisplacement, with an accessor (read
+# through src/solver/bodyMotion.H by bodyVelocity and by couplingConvergence.H).
 PPF=$SRC/src/sixDoFRigidBodyMotion/pointPatchFields/derived/sixDoFRigidBodyDisplacement
 BODY=$OUT/bodyDisplacement
 rm -rf "$BODY" && mkdir -p "$BODY"
