@@ -418,6 +418,31 @@ def test_coupling_tolerance_reaches_fvsolution(tmp_path, name, overrides, tolera
     assert pimple["couplingTolerance"] == pytest.approx(tolerance, abs=0)
 
 
+def test_interface_gravity_smoothing_reaches_fvsolution(tmp_path):
+    """run.interface_gravity_smoothing is PIMPLE's interfaceGravitySmoothing
+    (src/solver/interfaceGravity.H), 0 by default; set without run.interface_gravity it is
+    refused in one line naming both."""
+    import shutil
+
+    from foamlib import FoamFile
+
+    from floatfoam.layout import COMMON_DIR
+
+    for overrides, passes in (([], 0), (["run.interface_gravity=true",
+                                        "run.interface_gravity_smoothing=2"], 2)):
+        shutil.copytree(COMMON_DIR / "system", tmp_path / "system", dirs_exist_ok=True)
+        case, _, mesh = planned("stl_pontoon", overrides)
+        render._control(case, tmp_path, mesh, 1.0)
+        pimple = FoamFile(tmp_path / "system" / "fvSolution")["PIMPLE"]
+        assert pimple["interfaceGravitySmoothing"] == passes
+    with pytest.raises(InputError, match=r"^run.interface_gravity_smoothing = 2: valid with "
+                                         r"run.interface_gravity = true, or 0$"):
+        load_case("stl_pontoon", ["run.interface_gravity_smoothing=2"])
+    with pytest.raises(InputError, match="run.interface_gravity_smoothing"):
+        load_case("stl_pontoon", ["run.interface_gravity=true",
+                                  "run.interface_gravity_smoothing=-1"])
+
+
 @pytest.mark.parametrize("name, key, scheme, entry, written", [
     ("box_bilge", "time_scheme", None, "default", "Euler"),
     ("box_bilge", "time_scheme", "Euler", "default", "Euler"),

@@ -161,6 +161,7 @@ def _control(case: Case, run_dir: Path, mesh: RunMesh, end_time: float) -> None:
     pimple["nOuterCorrectors"] = 1 if run.static_body else run.outer_correctors
     pimple["couplingTolerance"] = coupling_tolerance(case, mesh.kind)
     pimple["interfaceGravity"] = run.interface_gravity
+    pimple["interfaceGravitySmoothing"] = run.interface_gravity_smoothing
     if run.static_body:
         pimple["correctPhi"] = False
 
