@@ -173,6 +173,40 @@ def test_3d_domain(cases, tmp_path):
     assert abs(result["body_patch"]["immersed_error"]) < 1e-4
 
 
+def _worst_tetrahedra(path) -> tuple[float, float]:
+    """The smallest and the 1st percentile of the tetrahedra's minimum scaled Jacobian (gmsh's
+    minSICN: 1 for a regular tetrahedron, 0 for a flat one) in the .msh at ``path``."""
+    import gmsh
+
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.open(str(path))
+        kinds, tags, _ = gmsh.model.mesh.getElements(3)
+        quality = np.concatenate([gmsh.model.mesh.getElementQualities(tag, "minSICN")
+                                  for kind, tag in zip(kinds, tags, strict=True)
+                                  if gmsh.model.mesh.getElementProperties(kind)[0]
+                                  .startswith("Tetrahedron")])
+    finally:
+        gmsh.finalize()
+    return float(quality.min()), float(np.percentile(quality, 1))
+
+
+def test_netgen_optimises_the_3d_tetrahedra(tmp_path):
+    """mesh.gmsh.optimize_netgen_3d: Netgen's optimiser after gmsh's own leaves no flat
+    tetrahedron. The sphere's quick 3D mesh (6 cells across): the worst minSICN 0.26 with
+    gmsh's alone, 0.44 with Netgen's, the 1st percentile 0.36 and 0.61 (measured); the
+    bound, 0.35, lies between the two worsts."""
+    worst = {}
+    for netgen in (False, True):
+        case = load_case("sphere", ["mesh.gmsh.body_cells_3d=6",
+                                    f"mesh.gmsh.optimize_netgen_3d={str(netgen).lower()}"])
+        build_domain(case, "coarse", "3d", path=tmp_path / f"{netgen}.msh")
+        worst[netgen] = _worst_tetrahedra(tmp_path / f"{netgen}.msh")
+    assert worst[False][0] < 0.35 < worst[True][0]
+    assert worst[True][1] > worst[False][1]
+
+
 def test_bad_inputs(cases, tmp_path):
     case = load_case("cylinder_heave")
     with pytest.raises(InputError, match="level"):

@@ -516,6 +516,7 @@ def _size_field(gmsh, body_surfaces, spec: MeshSpec, tank: Tank, curvature: bool
     gmsh.option.setNumber("Mesh.Algorithm", 6)
     gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay
     gmsh.option.setNumber("Mesh.Optimize", 1)
+    gmsh.option.setNumber("Mesh.OptimizeNetgen", 1 if spec.optimize_netgen_3d else 0)
 
 
 def _physical_groups(gmsh, volumes: tuple[int, ...], body_surfaces: list[int], tank: Tank,

@@ -48,6 +48,7 @@ class MeshSpec:
         or an ellipsoid): their count (0: none) and total height (m)
     band_prisms_3d : the 3D free-surface band in horizontal layers of prisms outside a column
         about the body (:mod:`floatfoam.meshing.domain3d`)
+    optimize_netgen_3d : the 3D tetrahedra optimised by Netgen's optimiser after gmsh's own
     margin : half-thickness of the core block around the body, m
     """
 
@@ -66,6 +67,7 @@ class MeshSpec:
     layers_3d: int = 0
     layers_height_3d: float = 0.0
     band_prisms_3d: bool = False
+    optimize_netgen_3d: bool = False
 
     def refine(self, count: float) -> int:
         """A coarse-level cell count at this level: round(count r^index), at least 1."""
@@ -91,4 +93,4 @@ def mesh_spec(case: Case, level: str) -> MeshSpec:
         growth=cfg.growth, growth_3d=cfg.growth_3d, margin=cfg.margin * length,
         layers_3d=cfg.layers_3d,
         layers_height_3d=cfg.layers_height_3d * length / (cfg.body_cells_3d * scale),
-        band_prisms_3d=cfg.band_prisms_3d)
+        band_prisms_3d=cfg.band_prisms_3d, optimize_netgen_3d=cfg.optimize_netgen_3d)
