@@ -269,10 +269,11 @@ class GmshSettings:
     # gmsh's own optimiser leaves flat tetrahedra at the free surface (the heaved 3D sphere's
     # coarse mesh: non-orthogonality up to 65°); Netgen's takes it to 52° and the sphere's record
     # to 639 steps from 1,950, its first seven extrema within 0.7 % of Cummins' model
-    # (docs/studies/interface-gravity.md): off by default until the 3D cases are measured on it
-    optimize_netgen_3d: bool = spec(False, kind=bool, added=True,
+    # (docs/studies/interface-gravity.md, docs/guide/meshes.md)
+    optimize_netgen_3d: bool = spec(True, kind=bool, added=True,
                                     doc="optimise a 3D tank's tetrahedra with Netgen's "
-                                        "optimiser after gmsh's own (Mesh.OptimizeNetgen)")
+                                        "optimiser after gmsh's own (Mesh.OptimizeNetgen); "
+                                        "false: gmsh's alone")
     half_3d: bool = spec(True, kind=bool, added=True,
                           doc="mesh half the tank, with a symmetry plane, for a body symmetric "
                               "about x = 0 or y = 0 (found from its shape or triangles) whose "

@@ -67,7 +67,7 @@ class MeshSpec:
     layers_3d: int = 0
     layers_height_3d: float = 0.0
     band_prisms_3d: bool = False
-    optimize_netgen_3d: bool = False
+    optimize_netgen_3d: bool = True
 
     def refine(self, count: float) -> int:
         """A coarse-level cell count at this level: round(count r^index), at least 1."""
