@@ -126,7 +126,8 @@ class RunSettings:
                              "fixed beyond outer_distance), or auto: distances where "
                              "inner_distance or outer_distance is set, for a body "
                              "released to turn over or a mesh made at equilibrium, else "
-                             "layered for a heave release, else "
+                             "layered for a heave release on a 2D, O-grid or wedge mesh, "
+                             "else "
                              "laplacian on a 2D, O-grid or wedge mesh and in 3D where the "
                              "distances' zone is thinner than twice the body's smallest "
                              "dimension, distances in 3D otherwise (docs/morphing.md)")
@@ -278,8 +279,8 @@ class GmshSettings:
                           doc="mesh half the tank, with a symmetry plane, for a body symmetric "
                               "about x = 0 or y = 0 (found from its shape or triangles) whose "
                               "G and motion keep that plane; false: the whole tank")
-    # the heaved 3D sphere's whole record on tetrahedra: T_d −0.7 to −2.4 % of Cummins', the
-    # wedge's +0.2 % (docs/studies/cases/superellipsoid_buoy.md)
+    # the heaved 3D sphere's record on tetrahedra: T_d over 1.9 s −0.55 % of Cummins' (the
+    # Laplacian), the wedge's whole record +0.2 % (docs/morphing.md)
     wedge: bool = spec(True, kind=bool, added=True,
                        doc="mesh an upright body of revolution about z, released in heave "
                            "alone, as an axisymmetric wedge (a shape of revolution, or "

@@ -92,7 +92,7 @@ def mesh_motion(case: Case, kind: str, band: float) -> str:
     equilibrium (moved to the release by the six-DoF solver's scale); else the layered motion
     for a body free in heave alone (:func:`heave_only`: a heave release) on a 2D section's,
     an O-grid's or a wedge's mesh (in a 3D tank, whose free surface its rows would carry up
-    and down through the tetrahedra, the heaved 3D sphere's middle cycles ran 1–2 % short on
+    and down through the tetrahedra, the heaved 3D sphere's middle cycles ran about 1 % short on
     it); else the Laplacian on a 2D section's, an O-grid's or a wedge's mesh, and in 3D where
     the distances' zone is thinner than :data:`THIN_BAND` × the body's smallest dimension
     (there the distances squeeze its cells until the step collapses; the Laplacian runs at
