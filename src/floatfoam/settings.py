@@ -269,8 +269,8 @@ class GmshSettings:
                                     "with prism layers); false: tetrahedra throughout")
     # gmsh's own optimiser leaves flat tetrahedra at the free surface (the heaved 3D sphere's
     # coarse mesh: non-orthogonality up to 65°); Netgen's takes it to 52° and the sphere's record
-    # to 639 steps from 1,950, its first seven extrema within 0.7 % of Cummins' model
-    # (docs/studies/interface-gravity.md, docs/guide/meshes.md)
+    # on the layered motion to 639 steps from 1,950, its first seven extrema within 0.7 % of
+    # Cummins' model (docs/studies/interface-gravity.md, docs/guide/meshes.md)
     optimize_netgen_3d: bool = spec(True, kind=bool, added=True,
                                     doc="optimise a 3D tank's tetrahedra with Netgen's "
                                         "optimiser after gmsh's own (Mesh.OptimizeNetgen); "
