@@ -127,10 +127,7 @@ class RunSettings:
                              "inner_distance or outer_distance is set, for a body "
                              "released to turn over or a mesh made at equilibrium, else "
                              "layered for a heave release on a 2D, O-grid or wedge mesh, "
-                             "else "
-                             "laplacian on a 2D, O-grid or wedge mesh and in 3D where the "
-                             "distances' zone is thinner than twice the body's smallest "
-                             "dimension, distances in 3D otherwise (docs/morphing.md)")
+                             "else laplacian (docs/morphing.md)")
     motion_diffusivity: str = spec("quadratic", kind=str, added=True,
                                     doc="the Laplacian's diffusivity in the distance d from "
                                     "the body: quadratic (1/d²) or linear (1/d, which spreads "

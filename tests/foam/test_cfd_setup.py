@@ -171,14 +171,14 @@ def six_dof(name, run_dir, overrides=()):
     ("cylinder_heave", (), "layered"),  # heave alone, on the O-grid
     ("box_bilge_heave", (), "layered"),  # heave alone, on a 2D section
     ("sphere", ("mesh.gmsh.wedge=false",), "laplacian"),  # heave alone in 3D: a zone 1.7 ×
-    ("sphere", ("mesh.gmsh.wedge=false", "domain.air_height=1.0"), "distances"),  # 4.0 ×
+    ("sphere", ("mesh.gmsh.wedge=false", "domain.air_height=1.0"), "laplacian"),  # 4.0 ×
     ("sphere", ("mesh.gmsh.wedge=false", 'run.mesh_motion="layered"'), "layered"),  # asked
     ("sphere", ('run.mesh_motion="laplacian"',), "laplacian"),  # asked
     ("cylinder_heave", ("run.layer_band=1.5",), "layered"),
     ("box_bilge", (), "laplacian"),  # heeled 10°: sway, heave and roll on a 2D section
     ("elliptic_cylinder_capsize", (), "distances"),  # released to turn over
-    ("ellipsoid", (), "distances"),  # 3D: a zone 2.65 × the body's smallest dimension
-    ("ellipsoid_roll", (), "laplacian"),  # 3D: a zone 1.29 × it, too thin for the distances
+    ("ellipsoid", (), "laplacian"),  # 3D: a zone 2.65 × the body's smallest dimension
+    ("ellipsoid_roll", (), "laplacian"),  # 3D: a zone 1.29 × it
     ("superellipsoid_buoy", (), "laplacian"),  # 3D, the whole tank: 0.45 ×
     ("lab_sphere", ('run.mesh_pose="equilibrium"',), "distances"),  # moved by the six-DoF scale
     ("elliptic_cylinder_capsize", ('run.mesh_motion="laplacian"',), "laplacian"),  # asked
@@ -191,9 +191,9 @@ def six_dof(name, run_dir, overrides=()):
 def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, motion):
     """run.mesh_motion "auto": the six-DoF solver's distances where the case sets a distance,
     for a release that turns the body over and a mesh made at equilibrium, else the layered
-    motion for a body free in heave alone in 2D or a wedge, else the Laplacian
-    in 2D, a wedge, and a 3D tank that leaves the distances a zone thinner than twice the
-    body's smallest dimension; the distances in a 3D tank with a wider zone. The layered
+    motion for a body free in heave alone in 2D or a wedge, else the Laplacian, in 2D, a
+    wedge and a 3D tank of any size (a zone for the distances of 1.3 to 4 × the body's
+    smallest dimension). The layered
     motion's dictionary: floatfoam's solver on the six-DoF coefficients with run.layer_band,
     the tank's ends free to slide. The Laplacian's
     dictionaries: the displacement's diffusivity quadratic in the inverse distance from the

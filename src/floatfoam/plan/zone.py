@@ -66,13 +66,12 @@ def resolve(case: Case, release: Pose, kind: str) -> MeshMotion:
             [box.half_width] if kind.startswith("3d") else [])
         length = smallest
     inner, outer = distances(case, length, clearance(case, release, walls, kind))
-    return MeshMotion(mesh_motion(case, kind, (outer - inner) / smallest), inner, outer)
+    return MeshMotion(mesh_motion(case, kind), inner, outer)
 
 
-def mesh_motion(case: Case, kind: str, band: float) -> str:
-    """How the mesh follows the body (``run.mesh_motion``; "auto" resolved here), ``band``
-    the width of the six-DoF distances' zone (outer − inner) over the body's smallest
-    dimension across.
+def mesh_motion(case: Case, kind: str) -> str:
+    """How the mesh follows the body in a domain of ``kind`` (``run.mesh_motion``; "auto"
+    resolved here).
 
     "layered": floatfoam's six-DoF motion solver whose scale depends on the height alone
     (``layeredSixDoFRigidBodyMotion``, src/solver/): the rows of points across the body's height
@@ -93,12 +92,13 @@ def mesh_motion(case: Case, kind: str, band: float) -> str:
     for a body free in heave alone (:func:`heave_only`: a heave release) on a 2D section's,
     an O-grid's or a wedge's mesh (in a 3D tank, whose free surface its rows would carry up
     and down through the tetrahedra, the heaved 3D sphere's middle cycles ran about 1 % short on
-    it); else the Laplacian on a 2D section's, an O-grid's or a wedge's mesh, and in 3D where
-    the distances' zone is thinner than :data:`THIN_BAND` × the body's smallest dimension
-    (there the distances squeeze its cells until the step collapses; the Laplacian runs at
-    about their cost), the distances in a 3D tank that leaves them a wider zone (the heaved
-    3D sphere's record within 0.5 % of Cummins' model on them). The measurements behind this
-    rule: docs/morphing.md."""
+    it); else the Laplacian, in 2D, a wedge and a 3D tank alike. In 3D the Laplacian's coarse
+    level is the nearer to the finer levels: the ellipsoid's roll within 0.01 % of its medium
+    level's period and 2.4 % of its damping ratio, where the distances' coarse level is 0.37 %
+    and 15 % off theirs (the two agree within 0.1 % at the medium level); the heaved 3D sphere
+    on it comes within 0.02 % of the wedge's period at the medium level; and in a zone thinner
+    than about twice the body's smallest dimension the distances squeeze the cells until the
+    step collapses. The measurements behind this rule: docs/morphing.md."""
     run = case.settings.run
     if run.mesh_motion == "layered" and not heave_only(case, kind):
         raise InputError("run.mesh_motion = \"layered\" for a body free in "
@@ -111,10 +111,9 @@ def mesh_motion(case: Case, kind: str, band: float) -> str:
     if run.inner_distance is not None or run.outer_distance is not None \
             or run.mesh_pose != "release" or turns_over(case):
         return "distances"
-    planar = kind in ("2d", "wedge", "ogrid")
-    if planar and heave_only(case, kind):
+    if kind in ("2d", "wedge", "ogrid") and heave_only(case, kind):
         return "layered"
-    return "laplacian" if planar or band < THIN_BAND else "distances"
+    return "laplacian"
 
 
 #: the type name of floatfoam's layered motion solver (src/solver/), linked into floatfoam's
@@ -134,13 +133,6 @@ def free_names(case: Case, kind: str) -> list[str]:
 def heave_only(case: Case, kind: str) -> bool:
     """Whether the body is free in heave alone: the layered motion's domain."""
     return free_names(case, kind) == ["heave"]
-
-
-#: the narrowest zone, × the body's smallest dimension across, in which "auto" keeps the
-#: six-DoF distances in 3D: the whole tanks of stl_pontoon (0.79) and superellipsoid_buoy
-#: (0.45) collapsed their steps on them at 0.31 s and 0.29 s, the half ellipsoid at 1.3 blew
-#: its air up at 2.9 s, and the ellipsoid's whole record ran at 2.65 (docs/morphing.md)
-THIN_BAND = 2.0
 
 
 #: the inner distance's default, × the body's smallest dimension across
