@@ -192,7 +192,7 @@ def test_the_mesh_motion_by_default_and_on_request(tmp_path, name, overrides, mo
     """run.mesh_motion "auto": the six-DoF solver's distances where the case sets a distance,
     for a release that turns the body over and a mesh made at equilibrium, else the layered
     motion for a body free in heave alone in 2D or a wedge, else the Laplacian, in 2D, a
-    wedge and a 3D tank of any size (a zone for the distances of 1.3 to 4 × the body's
+    wedge and a 3D tank of any size (a zone for the distances of 0.45 to 4 × the body's
     smallest dimension). The layered
     motion's dictionary: floatfoam's solver on the six-DoF coefficients with run.layer_band,
     the tank's ends free to slide. The Laplacian's
