@@ -276,8 +276,9 @@ class GmshSettings:
                           doc="mesh half the tank, with a symmetry plane, for a body symmetric "
                               "about x = 0 or y = 0 (found from its shape or triangles) whose "
                               "G and motion keep that plane; false: the whole tank")
-    # the heaved 3D sphere's record on tetrahedra: T_d over 1.9 s −0.55 % of Cummins' (the
-    # Laplacian), the wedge's whole record +0.2 % (docs/morphing.md)
+    # the heaved 3D sphere's coarse record on tetrahedra: T_d over 1.9 s −0.55 % of Cummins'
+    # (the Laplacian; −0.01 % at the medium level), the wedge's whole record +0.2 %
+    # (docs/morphing.md)
     wedge: bool = spec(True, kind=bool, added=True,
                        doc="mesh an upright body of revolution about z, released in heave "
                            "alone, as an axisymmetric wedge (a shape of revolution, or "

@@ -192,8 +192,8 @@ def test_a_vertical_cylinder_heaves_in_a_wedge(tmp_path):
 
 def test_a_body_of_revolution_given_by_triangles_heaves_in_a_wedge(tmp_path):
     """The `sphere` case's body written as a user's implicit surface (triangles): found to be a
-    body of revolution, it heaves in the wedge, not in the 3D tank (whose record's T_d over
-    1.9 s is 0.55 % short of Cummins' model: docs/morphing.md). Its first trough and crest (0.7 s,
+    body of revolution, it heaves in the wedge, not in the 3D tank (whose coarse record's T_d
+    over 1.9 s is 0.55 % short of Cummins' model: docs/morphing.md). Its first trough and crest (0.7 s,
     make test's step) within 0.6 % of Cummins' model's: at this step the `sphere` case's own
     wedge puts them +0.34 % and +0.12 % from it, these triangles +0.40 % and +0.08 %
     (measured)."""
@@ -387,7 +387,7 @@ def test_triaxial_ellipsoid_roll_3d_first_trough_and_sway(tmp_path):
     time of the first trough (half the period) within 5 % of Cummins' model (measured 0.3268 s
     against 0.3237 s, +0.9 %, the samples nearest the troughs; the vertices of parabolas through
     them 0.3255 s and 0.3242 s, +0.4 %; the mesh following the body by the Laplacian, the
-    default for its thin zone), G's sway by then within 10 % (−7.93 mm against −8.34 mm,
+    3D default), G's sway by then within 10 % (−7.93 mm against −8.34 mm,
     −4.9 %), the draft within 1 %. On the whole record the fitted periods differ by −0.9 % (0.6642 s
     against 0.6705 s); the roll-only model about G (0.7095 s) is −6.4 % away."""
     record = 0.35  # a trough 5 % late (0.340 s) is still seen
