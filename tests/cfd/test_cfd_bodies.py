@@ -193,10 +193,10 @@ def test_a_vertical_cylinder_heaves_in_a_wedge(tmp_path):
 def test_a_body_of_revolution_given_by_triangles_heaves_in_a_wedge(tmp_path):
     """The `sphere` case's body written as a user's implicit surface (triangles): found to be a
     body of revolution, it heaves in the wedge, not in the 3D tank (whose coarse record's T_d
-    over 1.9 s is 0.55 % short of Cummins' model: docs/morphing.md). Its first trough and crest (0.7 s,
-    make test's step) within 0.6 % of Cummins' model's: at this step the `sphere` case's own
-    wedge puts them +0.34 % and +0.12 % from it, these triangles +0.40 % and +0.08 %
-    (measured)."""
+    over 1.9 s is 0.55 % short of Cummins' model: docs/morphing.md). Its first trough and crest
+    (0.7 s, make test's step) within 0.6 % of Cummins' model's: at this step the `sphere`
+    case's own wedge puts them +0.34 % and +0.12 % from it, these triangles +0.40 % and
+    +0.08 % (measured)."""
     folder = tmp_path / "buoy"
     folder.mkdir()
     (folder / "case.toml").write_text(IMPLICIT_SPHERE)
